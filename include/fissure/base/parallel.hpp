@@ -1,0 +1,18 @@
+#pragma once
+/// Deterministic parallel loops. Work items write into slots indexed by item and are reduced in
+/// index order by the caller, so the thread count changes speed, never results.
+
+#include <cstddef>
+#include <functional>
+
+namespace fissure {
+
+/// Calls body(i) for i in [0, count) on `threads` threads (≤ 1: the calling thread only), in
+/// contiguous static blocks. If bodies throw, the exception of the lowest failing index is
+/// rethrown after every thread has finished.
+void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& body);
+
+/// The number of hardware threads, at least 1.
+int hardware_threads();
+
+}  // namespace fissure

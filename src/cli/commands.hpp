@@ -1,0 +1,27 @@
+#pragma once
+// Subcommands of the `fissure` tool. Each register_* adds its subcommand to the app and stores
+// the function that runs it; main() runs the chosen one and turns core errors into exit codes.
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace fissure::cli {
+
+/// Runs a parsed subcommand; returns the process exit code.
+using Action = std::function<int()>;
+
+/// Exit codes: one per error class, so scripts can tell a bad file from a bad parameter.
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitInternal = 1,      // a bug or an unexpected exception
+  kExitUsage = 2,         // command-line syntax (CLI11)
+  kExitInvalidInput = 3,  // InvalidInput: a parameter, mesh or selection is wrong
+  kExitIo = 4,            // IoError: a file is missing, unreadable, corrupt or unwritable
+  kExitNumerical = 5,     // NumericalFailure
+  kExitCancelled = 6,     // Cancelled
+};
+
+void register_version(CLI::App& app, Action& action);
+
+}  // namespace fissure::cli
