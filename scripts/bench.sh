@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Runs every benchmark binary on one core and regenerates docs/BENCHMARKS.md from their JSON.
+# Usage: scripts/bench.sh [benchmark-name-filter-regex]   e.g. scripts/bench.sh bench_fem
+# Medians of 5 repetitions; OMP/OpenBLAS pinned to one thread so figures are single-core.
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build_dir=${FISSURE_BUILD_DIR:-$root/build}
+"$root/scripts/build.sh" >/dev/null
+filter=${1:-.}
+out_dir=$build_dir/bench-results
+mkdir -p "$out_dir"
+export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+for exe in "$build_dir"/tests/bench/bench_*; do
+  [[ -x $exe && ! -d $exe ]] || continue
+  name=$(basename "$exe")
+  [[ $name =~ $filter ]] || continue
+  echo "bench: $name" >&2
+  taskset -c 0 "$exe" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
+    --benchmark_format=json --benchmark_out="$out_dir/$name.json" \
+    --benchmark_out_format=json >/dev/null
+done
+python3 "$root/tests/bench/write_benchmarks_md.py" "$out_dir" "$root/docs/BENCHMARKS.md" \
+  "scripts/bench.sh ${1:-}"
+echo "bench: wrote docs/BENCHMARKS.md" >&2
