@@ -1,0 +1,76 @@
+#include "fissure/fem/elastic_material.hpp"
+
+#include "fissure/base/error.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace fissure {
+namespace {
+
+std::string format(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// Checks one value against its table row.
+void check(const ParameterInfo& info, double value, std::vector<std::string>& problems) {
+  const bool below = info.min_exclusive ? value <= info.min : value < info.min;
+  const bool above = info.max_exclusive ? value >= info.max : value > info.max;
+  if (!std::isfinite(value) || below || above) {
+    problems.push_back(std::string(info.name) + " " + format(value) + " is outside " +
+                       (info.min_exclusive ? "(" : "[") + format(info.min) + ", " +
+                       (std::isinf(info.max) ? "inf" : format(info.max)) +
+                       (info.max_exclusive ? ")" : "]") +
+                       (info.unit[0] ? std::string(" ") + info.unit : std::string()));
+  }
+}
+
+}  // namespace
+
+const std::array<ParameterInfo, 3>& elastic_material_parameters() {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  static const std::array<ParameterInfo, 3> table{{
+      {"youngs_modulus", "--E", "Pa", 0.0, inf, true, false, 3.0e10,
+       "Young's modulus E (concrete 3e10, glass 7e10, ceramic tile 5e10)", "paper Table 2 (IN)"},
+      {"poisson_ratio", "--nu", "", 0.0, 0.5, false, true, 0.2,
+       "Poisson's ratio nu; linear tets lock as nu approaches 0.5 (docs/architecture.md)",
+       "paper Table 2 (IN)"},
+      {"density", "--rho", "kg/m^3", 0.0, inf, true, false, 2400.0,
+       "Mass density rho (concrete 2400, glass 2500)", "paper Table 2 (IN)"},
+  }};
+  return table;
+}
+
+std::vector<std::string> ElasticMaterial::problems() const {
+  std::vector<std::string> out;
+  const auto& table = elastic_material_parameters();
+  check(table[0], youngs_modulus, out);
+  check(table[1], poisson_ratio, out);
+  check(table[2], density, out);
+  return out;
+}
+
+void ElasticMaterial::validate() const {
+  const auto list = problems();
+  if (list.empty()) return;
+  std::string message = "material: ";
+  for (std::size_t i = 0; i < list.size(); ++i) message += (i ? "; " : "") + list[i];
+  throw InvalidInput(message);
+}
+
+Eigen::Matrix<double, 6, 6> ElasticMaterial::elasticity_matrix() const {
+  const double lambda = lame_lambda();
+  const double mu = shear_modulus();
+  Eigen::Matrix<double, 6, 6> d = Eigen::Matrix<double, 6, 6>::Zero();
+  d.topLeftCorner<3, 3>().setConstant(lambda);
+  for (int i = 0; i < 3; ++i) {
+    d(i, i) = lambda + 2.0 * mu;
+    d(3 + i, 3 + i) = mu;
+  }
+  return d;
+}
+
+}  // namespace fissure

@@ -1,0 +1,150 @@
+#include "fissure/fem/sparse_cholesky.hpp"
+
+#include "fissure/base/error.hpp"
+
+#include <cholmod.h>
+
+#include <mutex>
+#include <string>
+
+// OpenBLAS's thread control, declared weak: when libblas is another implementation the symbol is
+// absent and the call is skipped.
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
+namespace fissure {
+
+void use_single_threaded_blas() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    if (openblas_set_num_threads) openblas_set_num_threads(1);
+  });
+}
+
+struct SparseCholesky::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  int n = 0;
+
+  Impl() {
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    // AMD only: METIS (when present) costs more analysis time than it saves on these meshes, and
+    // trying several orderings makes the analysis slower and its choice harder to predict.
+    common.nmethods = 1;
+    common.method[0].ordering = CHOLMOD_AMD;
+    common.postorder = 1;
+    common.print = 0;
+    common.error_handler = nullptr;
+  }
+  ~Impl() {
+    if (factor) cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
+  // A cholmod_sparse view of an Eigen matrix (no copy), upper triangle used.
+  static cholmod_sparse view(const Eigen::SparseMatrix<double>& a) {
+    cholmod_sparse s{};
+    s.nrow = static_cast<std::size_t>(a.rows());
+    s.ncol = static_cast<std::size_t>(a.cols());
+    s.nzmax = static_cast<std::size_t>(a.nonZeros());
+    s.p = const_cast<int*>(a.outerIndexPtr());
+    s.i = const_cast<int*>(a.innerIndexPtr());
+    s.nz = const_cast<int*>(a.innerNonZeroPtr());
+    s.x = const_cast<double*>(a.valuePtr());
+    s.z = nullptr;
+    s.stype = 1;
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = a.isCompressed() ? 1 : 0;
+    return s;
+  }
+
+  void numeric(const Eigen::SparseMatrix<double>& a) {
+    cholmod_sparse s = view(a);
+    cholmod_factorize(&s, factor, &common);
+    if (common.status == CHOLMOD_NOT_POSDEF || factor->minor < factor->n) {
+      const long column = static_cast<long>(factor->minor);
+      throw NumericalFailure("Cholesky factorisation: the matrix is not positive definite (pivot " +
+                             std::to_string(column) + " of " + std::to_string(n) +
+                             " is not positive): an unsupported body, a mechanism or a degenerate mesh");
+    }
+    if (common.status < CHOLMOD_OK) {
+      throw NumericalFailure("Cholesky factorisation failed (CHOLMOD status " +
+                             std::to_string(common.status) + ")");
+    }
+  }
+
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) {
+    cholmod_dense rhs{};
+    rhs.nrow = static_cast<std::size_t>(b.rows());
+    rhs.ncol = static_cast<std::size_t>(b.cols());
+    rhs.nzmax = rhs.nrow * rhs.ncol;
+    rhs.d = rhs.nrow;
+    rhs.x = const_cast<double*>(b.data());
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor, &rhs, &common);
+    if (!x) throw NumericalFailure("Cholesky solve failed (CHOLMOD status " + std::to_string(common.status) + ")");
+    Eigen::MatrixXd out = Eigen::Map<const Eigen::MatrixXd>(static_cast<double*>(x->x), b.rows(), b.cols());
+    cholmod_free_dense(&x, &common);
+    return out;
+  }
+};
+
+SparseCholesky::SparseCholesky() : m_impl(std::make_unique<Impl>()) {}
+SparseCholesky::~SparseCholesky() = default;
+SparseCholesky::SparseCholesky(SparseCholesky&&) noexcept = default;
+SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
+
+void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& a) {
+  if (a.rows() != a.cols()) throw InvalidInput("Cholesky factorisation: the matrix is not square");
+  use_single_threaded_blas();
+  Impl& impl = *m_impl;
+  if (impl.factor) cholmod_free_factor(&impl.factor, &impl.common);
+  impl.n = static_cast<int>(a.rows());
+  cholmod_sparse s = Impl::view(a);
+  impl.factor = cholmod_analyze(&s, &impl.common);
+  if (!impl.factor) throw NumericalFailure("Cholesky analysis failed (out of memory?)");
+  impl.numeric(a);
+}
+
+void SparseCholesky::refactorize(const Eigen::SparseMatrix<double>& a) {
+  if (!m_impl->factor || a.rows() != m_impl->n) {
+    factorize(a);
+    return;
+  }
+  m_impl->numeric(a);
+}
+
+Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
+  return m_impl->solve(b).col(0);
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const { return m_impl->solve(b); }
+
+int SparseCholesky::rows() const { return m_impl->n; }
+
+long SparseCholesky::factor_nonzeros() const {
+  if (!m_impl->factor) return 0;
+  // For a supernodal factor, count entries of the supernodes' lower-trapezoidal blocks.
+  cholmod_factor* l = m_impl->factor;
+  if (!l->is_super) {
+    long nnz = 0;
+    const int* colcount = static_cast<const int*>(l->ColCount);
+    for (std::size_t j = 0; j < l->n; ++j) nnz += colcount[j];
+    return nnz;
+  }
+  const int* super = static_cast<const int*>(l->super);
+  const int* pi = static_cast<const int*>(l->pi);
+  long nnz = 0;
+  for (std::size_t s = 0; s < l->nsuper; ++s) {
+    const long ncols = super[s + 1] - super[s];
+    const long nrows = pi[s + 1] - pi[s];
+    nnz += ncols * nrows - ncols * (ncols - 1) / 2;
+  }
+  return nnz;
+}
+
+}  // namespace fissure

@@ -1,0 +1,296 @@
+#include "fissure/base/error.hpp"
+#include "fissure/fem/load.hpp"
+#include "fissure/fem/static_solver.hpp"
+#include "fissure/fem/stress.hpp"
+
+#include "fem_test_meshes.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstring>
+
+namespace fissure {
+namespace {
+
+std::vector<int> fixed(const TetMesh& mesh, std::initializer_list<const char*> specs) {
+  std::vector<SupportSpec> supports;
+  for (const char* s : specs) supports.push_back(parse_support(s));
+  return resolve_supports(mesh, supports);
+}
+
+// Solved patch test: prescribe a linear field u = A x + b on the boundary of a distorted mesh,
+// solve for the interior, and recover the linear field exactly (to round-off) and a constant
+// stress D ε(A). Linear tets contain linear fields, so any error is a bug, not discretisation.
+TEST(StaticSolver, PatchTestOnADistortedMesh) {
+  auto mesh = test::perturbed_box(4, 0.2, 21);
+  const ElasticMaterial m = test::concrete();
+  auto body = std::make_shared<const ElasticBody>(mesh, m);
+  Eigen::Matrix3d a;
+  a << 1e-4, 2e-5, -3e-5, 4e-5, -2e-4, 1e-5, -1e-5, 3e-5, 5e-5;
+  const Eigen::Vector3d b(1e-3, -2e-3, 5e-4);
+  Eigen::VectorXd exact(3 * mesh->node_count());
+  for (int v = 0; v < mesh->node_count(); ++v) {
+    exact.segment<3>(3 * v) = a * mesh->nodes().row(v).transpose() + b;
+  }
+  // Boundary nodes are prescribed; interior dofs solve K_ii u_i = −K_ib u_b.
+  std::vector<int> boundary_nodes;
+  for (const BoundaryFace& f : mesh->boundary_faces()) boundary_nodes.insert(boundary_nodes.end(), f.nodes.begin(), f.nodes.end());
+  std::sort(boundary_nodes.begin(), boundary_nodes.end());
+  boundary_nodes.erase(std::unique(boundary_nodes.begin(), boundary_nodes.end()), boundary_nodes.end());
+  const DofMap interior(3 * mesh->node_count(), dofs_of_nodes(boundary_nodes));
+  Eigen::VectorXd prescribed = exact;
+  for (int d : interior.free_dofs()) prescribed[d] = 0.0;
+  const Eigen::VectorXd rhs = -interior.restrict_vector(body->stiffness() * prescribed);
+  SparseCholesky chol;
+  chol.factorize(interior.restrict_matrix(body->stiffness()));
+  const Eigen::VectorXd u = prescribed + interior.expand_vector(chol.solve(rhs));
+  // cond(K_ii) of this small mesh is ~1e3, so the solve loses ~3 digits at most.
+  EXPECT_LT((u - exact).cwiseAbs().maxCoeff(), 1e-12 * exact.cwiseAbs().maxCoeff());
+
+  const StressField s = compute_stress(*mesh, body->gradients(), m, u);
+  const Eigen::Matrix3d eps = 0.5 * (a + a.transpose());
+  const Eigen::Matrix3d sigma = m.lame_lambda() * eps.trace() * Eigen::Matrix3d::Identity() + 2 * m.shear_modulus() * eps;
+  const Eigen::Matrix<double, 6, 1> expected = tensor_to_voigt(sigma);
+  for (int t = 0; t < mesh->tet_count(); ++t) {
+    ASSERT_LT((s.row(t).transpose() - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff())
+        << "tet " << t;
+  }
+}
+
+// Uniaxial bar 1 × 0.1 × 0.1 m on rollers (x fixed on x = 0, y on y = 0, z on z = 0), pulled by
+// F on x = L: the exact solution σxx = F/A, ux = F x/(EA), uy = −ν F y/(EA) is linear, so linear
+// tets reproduce it to round-off on any mesh.
+TEST(StaticSolver, UniaxialBarIsExact) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1.0, 0.1, 0.1}, 10, 2, 2);
+  const ElasticMaterial m{2.0e11, 0.3, 7800};
+  auto body = std::make_shared<const ElasticBody>(mesh, m);
+  const StaticSolver solver(body, fixed(*mesh, {"xmin@x", "ymin@y", "zmin@z"}));
+  const double force = 1.0e5, area = 0.01;
+  const Eigen::VectorXd f = assemble_load(*mesh, parse_load("xmax=1e5,0,0"));
+  const StaticSolution sol = solver.solve(f);
+  EXPECT_LT(sol.relative_residual, 1e-10);
+  const double strain = force / (m.youngs_modulus * area);
+  double worst = 0.0;
+  for (int v = 0; v < mesh->node_count(); ++v) {
+    const Eigen::Vector3d x = mesh->nodes().row(v);
+    const Eigen::Vector3d exact(strain * x.x(), -m.poisson_ratio * strain * x.y(), -m.poisson_ratio * strain * x.z());
+    worst = std::max(worst, (sol.displacement.segment<3>(3 * v) - exact).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-12 * strain);  // displacement error relative to the 1 m elongation scale
+  const StressField s = compute_stress(*mesh, body->gradients(), m, sol.displacement);
+  const double sigma = force / area;
+  EXPECT_LT((s.col(0).array() - sigma).abs().maxCoeff(), 1e-11 * sigma);
+  EXPECT_LT(s.rightCols<5>().cwiseAbs().maxCoeff(), 1e-11 * sigma);
+  // The supports react exactly −F along x.
+  EXPECT_NEAR(sol.support_reaction.x(), -force, 1e-9 * force);
+}
+
+// Cantilever 1 × 0.1 × 0.1 m clamped at x = 0, P = 1 kN down on x = L (fem-pitfalls.md §1.1).
+// w̄ = fᵀu / P is the load-weighted tip deflection; compatible displacement elements bound the
+// compliance from below, so w̄ must rise monotonically towards the 3D limit 1.3345e-3 m (C3D10
+// extrapolation, 0.09 % above Euler–Bernoulli) and never exceed it.
+TEST(StaticSolver, CantileverConvergesFromBelowWithAMeasuredOrder) {
+  const ElasticMaterial m{3.0e10, 0.3, 2400};
+  const double reference = 1.3345e-3;
+  const int across[3] = {2, 4, 8};
+  double error[3];
+  for (int k = 0; k < 3; ++k) {
+    const int n = across[k];
+    auto mesh = test::box_mesh({0, 0, 0}, {1.0, 0.1, 0.1}, 10 * n, n, n);
+    auto body = std::make_shared<const ElasticBody>(mesh, m);
+    const StaticSolver solver(body, fixed(*mesh, {"xmin"}));
+    const Eigen::VectorXd f = assemble_load(*mesh, parse_load("xmax=0,0,-1000"));
+    const StaticSolution sol = solver.solve(f);
+    EXPECT_LT(sol.relative_residual, 1e-10);
+    EXPECT_LT((sol.support_reaction - Eigen::Vector3d(0, 0, 1000)).norm(), 1e-9 * 1000);
+    const double w = f.dot(sol.displacement) / 1000.0;  // fᵀu / P, P = 1 kN
+    error[k] = (reference - w) / reference;
+    std::printf("cantilever %d across: %d tets, tip deflection %.5e m, error %.2f %%\n", n,
+                mesh->tet_count(), w, 100 * error[k]);
+    EXPECT_GT(error[k], 0.0) << "a linear-tet cantilever cannot be more flexible than the 3D limit";
+  }
+  EXPECT_GT(error[0], error[1]);
+  EXPECT_GT(error[1], error[2]);
+  const double order_coarse = std::log2(error[0] / error[1]);
+  const double order_fine = std::log2(error[1] / error[2]);
+  std::printf("measured order: %.2f (2→4), %.2f (4→8)\n", order_coarse, order_fine);
+  // Pre-asymptotic linear tets in bending: h^1.5–1.8 measured in fem-pitfalls.md §1.1, heading
+  // for h². Anything outside [1.2, 2.5] means a wrong element or load.
+  EXPECT_GT(order_fine, 1.2);
+  EXPECT_LT(order_fine, 2.5);
+  // At 8 elements across the gmsh table has −5.2 %; a structured Kuhn mesh must be in the same
+  // band (a correct code cannot be much better, fem-pitfalls.md §1.1).
+  EXPECT_GT(error[2], 0.01);
+  EXPECT_LT(error[2], 0.15);
+}
+
+Eigen::VectorXd rotate_nodal(const Eigen::Matrix3d& q, const Eigen::VectorXd& v) {
+  Eigen::VectorXd out(v.size());
+  for (Eigen::Index i = 0; i < v.size(); i += 3) out.segment<3>(i) = q * v.segment<3>(i);
+  return out;
+}
+
+TEST(StaticSolver, RotationInvariance) {
+  auto mesh = test::perturbed_box(4, 0.2, 7);
+  const ElasticMaterial m = test::concrete();
+  const std::vector<int> supports = fixed(*mesh, {"zmin"});
+  const Eigen::VectorXd f = assemble_load(*mesh, parse_load("zmax=2e4,-1e4,-5e4"));
+  auto body = std::make_shared<const ElasticBody>(mesh, m);
+  const StaticSolution a = StaticSolver(body, supports).solve(f);
+
+  const Eigen::Matrix3d q = (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized())).toRotationMatrix();
+  Eigen::MatrixX3d rotated = mesh->nodes() * q.transpose();
+  auto rotated_mesh = std::make_shared<const TetMesh>(rotated, mesh->tets());
+  auto rotated_body = std::make_shared<const ElasticBody>(rotated_mesh, m);
+  const StaticSolution b = StaticSolver(rotated_body, supports).solve(rotate_nodal(q, f));
+  // cond(K) ~ 1e4 here; rotation changes round-off only.
+  EXPECT_LT((b.displacement - rotate_nodal(q, a.displacement)).norm(), 1e-10 * a.displacement.norm());
+  const StressField sa = compute_stress(*mesh, body->gradients(), m, a.displacement);
+  const StressField sb = compute_stress(*rotated_mesh, rotated_body->gradients(), m, b.displacement);
+  double worst = 0.0, scale = sa.cwiseAbs().maxCoeff();
+  for (int t = 0; t < mesh->tet_count(); ++t) {
+    const Eigen::Matrix3d expected = q * voigt_to_tensor(sa.row(t).transpose()) * q.transpose();
+    worst = std::max(worst, (voigt_to_tensor(sb.row(t).transpose()) - expected).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
+}
+
+// Lengths × s with forces × s² keep stresses and scale displacements by s (E fixed).
+TEST(StaticSolver, ScaleInvariance) {
+  const ElasticMaterial m = test::concrete();
+  Eigen::VectorXd reference_u;
+  StressField reference_s;
+  for (double s : {1.0, 1e-3, 1e3}) {
+    auto mesh = test::box_mesh({0, 0, 0}, Eigen::Vector3d(1.0, 0.2, 0.1) * s, 10, 2, 2);
+    auto body = std::make_shared<const ElasticBody>(mesh, m);
+    const StaticSolver solver(body, fixed(*mesh, {"xmin"}));
+    LoadSpec load = parse_load("xmax=0,0,-1000");
+    load.force *= s * s;
+    const StaticSolution sol = solver.solve(assemble_load(*mesh, load));
+    const StressField stress = compute_stress(*mesh, body->gradients(), m, sol.displacement);
+    if (s == 1.0) {
+      reference_u = sol.displacement;
+      reference_s = stress;
+      continue;
+    }
+    // Same linear system up to scaling by powers of s: differences are round-off of cond ~1e4.
+    EXPECT_LT((sol.displacement / s - reference_u).norm(), 1e-10 * reference_u.norm()) << "scale " << s;
+    EXPECT_LT((stress - reference_s).norm(), 1e-10 * reference_s.norm()) << "scale " << s;
+  }
+}
+
+TEST(StaticSolver, SameBytesAtOneAndTwoThreads) {
+  auto mesh = test::perturbed_box(6, 0.2, 4);
+  const Eigen::VectorXd f = assemble_load(*mesh, parse_load("zmax=0,0,-1e4"));
+  Eigen::VectorXd u[2];
+  for (int threads : {1, 2}) {
+    auto body = std::make_shared<const ElasticBody>(mesh, test::concrete(), threads);
+    u[threads - 1] = StaticSolver(body, fixed(*mesh, {"zmin"})).solve(f).displacement;
+  }
+  EXPECT_EQ(std::memcmp(u[0].data(), u[1].data(), sizeof(double) * static_cast<std::size_t>(u[0].size())), 0);
+}
+
+// A free tile pressed off-centre: inertia relief balances the load by rigid acceleration.
+TEST(StaticSolver, FreeBodyInertiaRelief) {
+  auto mesh = test::box_mesh({-0.5, -0.5, 0}, {1.0, 1.0, 0.05}, 20, 20, 2);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  for (MassKind mass : {MassKind::Lumped, MassKind::Consistent}) {
+    StaticSolverOptions options;
+    options.mass = mass;
+    const StaticSolver solver(body, {}, options);
+    ASSERT_TRUE(solver.free_body());
+    const Eigen::VectorXd f = assemble_load(*mesh, parse_load("ball:0.2,0.1,0.05,0.08=3e3,0,-1e4"));
+    const StaticSolution sol = solver.solve(f);
+    // The residual over ALL dofs includes the reactions at the 3-2-1 dofs: they must vanish.
+    EXPECT_LT(sol.relative_residual, 1e-10);
+    const Eigen::MatrixXd& r = solver.rigid_modes();
+    ASSERT_EQ(r.cols(), 6);
+    // The balanced load has no rigid content, and u is M-orthogonal to the rigid motions.
+    EXPECT_LT((r.transpose() * sol.balanced_load).norm(), 1e-12 * (r.transpose() * f).norm());
+    const Eigen::VectorXd mu = body->mass_times(mass, sol.displacement);
+    EXPECT_LT((r.transpose() * mu).norm(), 1e-12 * r.norm() * mu.norm());
+    EXPECT_GT(sol.displacement.norm(), 0.0);
+  }
+}
+
+TEST(StaticSolver, MechanismsAreReportedNotSolved) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 1, 0.1}, 4, 4, 1);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  auto error_of = [&](const std::vector<int>& dofs) {
+    try {
+      StaticSolver solver(body, dofs);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error_of(fixed(*mesh, {"ball:0,0,0,0.01"})).find("3 rigid motions free in component 0"),
+            std::string::npos);
+  // One bottom edge: nodes on a line let the plate rotate about it.
+  const std::string collinear = error_of(fixed(*mesh, {"box:0,1,0,0,0,0"}));
+  EXPECT_NE(collinear.find("1 rigid motion free"), std::string::npos) << collinear;
+  EXPECT_NE(collinear.find("collinear"), std::string::npos) << collinear;
+  // Rollers in z only on the bottom: the plate can slide and spin in its plane.
+  EXPECT_NE(error_of(fixed(*mesh, {"zmin@z"})).find("3 rigid motions free"), std::string::npos);
+  EXPECT_EQ(error_of(fixed(*mesh, {"zmin"})), "");
+
+  // Two disjoint boxes, only one supported.
+  const TetMesh a = make_structured_box({0, 0, 0}, {1, 1, 1}, 1, 1, 1);
+  const TetMesh b = make_structured_box({3, 0, 0}, {1, 1, 1}, 1, 1, 1);
+  Eigen::MatrixX3d nodes(a.node_count() + b.node_count(), 3);
+  nodes << a.nodes(), b.nodes();
+  Eigen::MatrixX4i tets(a.tet_count() + b.tet_count(), 4);
+  tets << a.tets(), (b.tets().array() + a.node_count()).matrix();
+  auto two = std::make_shared<const TetMesh>(nodes, tets, "two boxes");
+  auto two_body = std::make_shared<const ElasticBody>(two, test::concrete());
+  try {
+    StaticSolver solver(two_body, fixed(*two, {"box:0,1,0,1,0,0"}));
+    FAIL() << "an unsupported second component must be refused";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("component 1"), std::string::npos) << e.what();
+  }
+}
+
+TEST(StaticSolver, BadInputIsNamed) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 1, 0.1}, 4, 4, 1);
+  try {
+    assemble_load(*mesh, parse_load("ball:0,0,9,0.01=0,0,-1"));
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("load patch 'ball:0,0,9,0.01' touches no boundary face"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(parse_load("zmax"), InvalidInput);
+  EXPECT_THROW(parse_load("zmax=1,2"), InvalidInput);
+  EXPECT_THROW(parse_load("zmax=1,2,nan"), InvalidInput);
+  EXPECT_THROW(parse_load("box:0,1=1,2,3"), InvalidInput);
+  EXPECT_THROW(parse_support("zmin@w"), InvalidInput);
+  EXPECT_THROW(resolve_supports(*mesh, {parse_support("nosuchgroup")}), InvalidInput);
+  EXPECT_THROW(resolve_supports(*mesh, {parse_support("ball:5,5,5,0.1")}), InvalidInput);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  const StaticSolver solver(body, fixed(*mesh, {"zmin"}));
+  EXPECT_THROW(solver.solve(Eigen::VectorXd::Zero(5)), InvalidInput);
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * mesh->node_count());
+  f[7] = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(solver.solve(f), InvalidInput);
+  EXPECT_EQ(solver.solve(Eigen::VectorXd::Zero(3 * mesh->node_count())).displacement.norm(), 0.0);
+}
+
+TEST(Load, GravityAndPatchTotals) {
+  auto mesh = test::perturbed_box(3, 0.2, 2);
+  const Eigen::VectorXd g = gravity_load(*mesh, 2400, Eigen::Vector3d(0, 0, -9.81));
+  Eigen::Vector3d total = Eigen::Vector3d::Zero();
+  for (int v = 0; v < mesh->node_count(); ++v) total += g.segment<3>(3 * v);
+  EXPECT_NEAR(total.z(), -9.81 * 2400 * mesh->total_volume(), 1e-12 * 9.81 * 2400);
+  const Eigen::VectorXd p = assemble_load(*mesh, parse_load("zmax=10,-20,30"));
+  total.setZero();
+  for (int v = 0; v < mesh->node_count(); ++v) total += p.segment<3>(3 * v);
+  EXPECT_LT((total - Eigen::Vector3d(10, -20, 30)).norm(), 1e-13 * 40);
+}
+
+}  // namespace
+}  // namespace fissure
