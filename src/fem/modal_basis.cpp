@@ -1,0 +1,308 @@
+#include "fissure/fem/modal_basis.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/base/rng.hpp"
+#include "fissure/fem/sparse_cholesky.hpp"
+#include "fissure/fem/static_solver.hpp"
+#include "fissure/fem/supports.hpp"
+
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <numbers>
+
+namespace fissure {
+namespace fs = std::filesystem;
+namespace {
+
+// y = P (K_ff − σ M_ff)⁻¹ x through CHOLMOD; the interface Spectra's shift-invert mode expects.
+// P = I − R Rᵀ M deflates the rigid motions R (M-orthonormal) of a free body: they span an
+// invariant subspace of (K − σM)⁻¹M, so Lanczos on the M-orthogonal complement finds exactly the
+// flexible modes and never has to resolve the 6k-fold zero eigenvalue (which it does poorly: with
+// two free components it converged 11 of the 12 rigid modes). Empty R: no projection.
+class ShiftInvertOperator {
+public:
+  using Scalar = double;
+  ShiftInvertOperator(const Eigen::SparseMatrix<double>& k, const Eigen::SparseMatrix<double>& m,
+                      const Eigen::MatrixXd& rigid)
+      : m_k(k), m_m(m), m_rigid(rigid), m_mass_rigid(m * rigid) {}
+  Eigen::Index rows() const { return m_k.rows(); }
+  Eigen::Index cols() const { return m_k.cols(); }
+  void set_shift(double sigma) {
+    const Eigen::SparseMatrix<double> shifted = m_k - sigma * m_m;
+    m_factor.factorize(shifted);
+  }
+  void perform_op(const double* x, double* y) const {
+    const Eigen::Map<const Eigen::VectorXd> in(x, rows());
+    Eigen::Map<Eigen::VectorXd> out(y, rows());
+    out = m_factor.solve(Eigen::VectorXd(in));
+    if (m_rigid.cols() > 0) out -= m_rigid * (m_mass_rigid.transpose() * out);
+  }
+
+private:
+  const Eigen::SparseMatrix<double>& m_k;
+  const Eigen::SparseMatrix<double>& m_m;
+  const Eigen::MatrixXd& m_rigid;
+  Eigen::MatrixXd m_mass_rigid;
+  SparseCholesky m_factor;
+};
+
+// y = M_ff x.
+class MassOperator {
+public:
+  using Scalar = double;
+  explicit MassOperator(const Eigen::SparseMatrix<double>& m) : m_m(m) {}
+  Eigen::Index rows() const { return m_m.rows(); }
+  Eigen::Index cols() const { return m_m.cols(); }
+  void perform_op(const double* x, double* y) const {
+    Eigen::Map<Eigen::VectorXd>(y, rows()) = m_m * Eigen::Map<const Eigen::VectorXd>(x, rows());
+  }
+
+private:
+  const Eigen::SparseMatrix<double>& m_m;
+};
+
+// An upper bound of the first flexible eigenvalue of a free body: the Rayleigh quotient of two
+// steps of inverse iteration (inertia-relief solves, rigid content removed) from a seeded random
+// start. Rayleigh quotients of vectors M-orthogonal to the rigid modes are ≥ λ₇, and two steps
+// bring it within a small factor of λ₇, which is all the shift needs.
+double first_flexible_eigenvalue_bound(std::shared_ptr<const ElasticBody> body, MassKind mass) {
+  StaticSolverOptions options;
+  options.mass = mass;
+  const StaticSolver solver(body, {}, options);
+  Rng rng(0x5eed);
+  Eigen::VectorXd u(body->stiffness().rows());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = rng.normal();
+  for (int step = 0; step < 2; ++step) {
+    u = solver.solve(body->mass_times(mass, u)).displacement;
+    u /= u.norm();
+  }
+  return u.dot(body->stiffness() * u) / u.dot(body->mass_times(mass, u));
+}
+
+void write_pod(std::string& out, const void* data, std::size_t bytes) {
+  out.append(static_cast<const char*>(data), bytes);
+}
+
+}  // namespace
+
+std::vector<std::string> ModalOptions::problems() const {
+  std::vector<std::string> out;
+  if (mode_count < 1 || mode_count > 5000) out.push_back("mode count " + std::to_string(mode_count) + " is outside [1, 5000]");
+  if (!(tolerance > 0.0 && tolerance < 1e-2)) out.push_back("tolerance must be in (0, 1e-2)");
+  if (max_iterations < 1) out.push_back("max_iterations must be >= 1");
+  if (krylov_size < 0) out.push_back("krylov_size must be >= 0");
+  return out;
+}
+
+void ModalOptions::validate() const {
+  const auto list = problems();
+  if (list.empty()) return;
+  std::string message = "modal analysis: ";
+  for (std::size_t i = 0; i < list.size(); ++i) message += (i ? "; " : "") + list[i];
+  throw InvalidInput(message);
+}
+
+ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
+                               const ModalOptions& options, ProgressSink* progress, const CancelToken* cancel) {
+  options.validate();
+  const TetMesh& mesh = body->mesh();
+  check_supports_for_mechanisms(mesh, fixed_dofs);
+  NullProgress null_progress;
+  ProgressSink& sink = progress ? *progress : null_progress;
+  if (cancel) cancel->throw_if_cancelled();
+  sink.report("modal analysis", 0.0);
+
+  const bool free = fixed_dofs.empty();
+  const DofMap dofs(3 * mesh.node_count(), fixed_dofs);
+  const Eigen::SparseMatrix<double> k = dofs.restrict_matrix(body->stiffness());
+  const Eigen::SparseMatrix<double> m = dofs.restrict_matrix(body->mass_matrix(options.mass));
+  // Free body: the exact rigid motions, M-orthonormal (no dof is fixed, so free = all dofs).
+  const Eigen::MatrixXd rigid = free ? mass_orthonormal_rigid_modes(*body, options.mass) : Eigen::MatrixXd();
+  const Eigen::Index n = k.rows();
+  const Eigen::Index nev = options.mode_count;
+  if (nev + rigid.cols() >= n) {
+    throw InvalidInput("modal analysis: " + std::to_string(options.mode_count) + " modes asked for, but the mesh has only " +
+                       std::to_string(n - rigid.cols()) + " flexible degrees of freedom");
+  }
+  const Eigen::Index ncv = std::min<Eigen::Index>(n - rigid.cols(), options.krylov_size > 0
+                                                                        ? std::max<Eigen::Index>(options.krylov_size, nev + 1)
+                                                                        : std::max<Eigen::Index>(2 * nev + 1, 20));
+
+  // Shift-invert about σ: 0 for a supported body (K_ff is positive definite), slightly below
+  // zero for a free one so that K − σM is positive definite.
+  const double sigma = free ? -0.01 * first_flexible_eigenvalue_bound(body, options.mass) : 0.0;
+  if (cancel) cancel->throw_if_cancelled();
+
+  ShiftInvertOperator op(k, m, rigid);
+  MassOperator b(m);
+  Spectra::SymGEigsShiftSolver<ShiftInvertOperator, MassOperator, Spectra::GEigsMode::ShiftInvert> solver(
+      op, b, nev, ncv, sigma);
+  // Seeded start vector, free of rigid motion.
+  Rng rng(0x1a2c05);
+  Eigen::VectorXd start(n);
+  for (Eigen::Index i = 0; i < n; ++i) start[i] = rng.normal();
+  if (free) start -= rigid * (rigid.transpose() * (m * start));
+  solver.init(start.data());
+  solver.compute(Spectra::SortRule::LargestMagn, options.max_iterations, options.tolerance,
+                 Spectra::SortRule::SmallestAlge);
+  if (solver.info() != Spectra::CompInfo::Successful) {
+    throw NumericalFailure("modal analysis: the eigensolver did not converge (" + std::to_string(nev) +
+                           " modes, Krylov size " + std::to_string(ncv) + ", " +
+                           std::to_string(options.max_iterations) + " restarts)");
+  }
+  if (cancel) cancel->throw_if_cancelled();
+  const Eigen::VectorXd values = solver.eigenvalues();   // ascending (SmallestAlge)
+  const Eigen::MatrixXd vectors = solver.eigenvectors();  // M-orthonormal (B inner product)
+
+  ModalBasis basis;
+  basis.m_mass = options.mass;
+  basis.m_eigenvalues = values;
+  basis.m_modes.resize(3 * static_cast<Eigen::Index>(mesh.node_count()), nev);
+  for (Eigen::Index j = 0; j < nev; ++j) basis.m_modes.col(j) = dofs.expand_vector(vectors.col(j));
+
+  if (free) {
+    basis.m_rigid_modes = rigid;
+    // The rigid modes' eigenvalues are their Rayleigh quotients rᵀKr (rᵀMr = 1): round-off of
+    // K's null space. Exactly 6 per component must be near zero: they are (K R ≈ 0), and the
+    // first flexible eigenvalue of the complement must be clearly positive, or the body has a
+    // further zero-energy motion (a hinge between parts touching at a node or an edge).
+    basis.m_rigid_eigenvalues = (rigid.transpose() * (body->stiffness() * rigid)).diagonal();
+    const double first_flexible = values[0];
+    // Rigid Rayleigh quotients are ~1e-13·λ₇ (fem-pitfalls §2.7); 1e-6·λ₇ leaves seven decades.
+    for (Eigen::Index i = 0; i < basis.m_rigid_eigenvalues.size(); ++i) {
+      if (!(std::abs(basis.m_rigid_eigenvalues[i]) <= 1e-6 * first_flexible)) {
+        throw NumericalFailure("modal analysis: rigid motion " + std::to_string(i) + " has energy " +
+                               std::to_string(basis.m_rigid_eigenvalues[i]) + " against a first flexible eigenvalue of " +
+                               std::to_string(first_flexible) + ": the body is not free, or has a further zero-energy motion");
+      }
+    }
+  }
+  if (!basis.m_eigenvalues.allFinite() || !basis.m_modes.allFinite() || !(basis.m_eigenvalues[0] > 0.0)) {
+    throw NumericalFailure("modal analysis: non-finite or non-positive flexible eigenvalues");
+  }
+  sink.report("modal analysis", 1.0);
+  return basis;
+}
+
+Eigen::VectorXd ModalBasis::frequencies_hz() const {
+  return m_eigenvalues.array().sqrt() / (2.0 * std::numbers::pi);
+}
+
+Eigen::VectorXd ModalBasis::static_displacement(const Eigen::VectorXd& f) const {
+  if (f.size() != m_modes.rows()) {
+    throw InvalidInput("modal solve: load vector has " + std::to_string(f.size()) + " entries, the basis has " +
+                       std::to_string(m_modes.rows()) + " dofs");
+  }
+  const Eigen::VectorXd q = (m_modes.transpose() * f).cwiseQuotient(m_eigenvalues);
+  return m_modes * q;
+}
+
+Hash128 ModalBasis::cache_key(const ElasticBody& body, const std::vector<int>& fixed_dofs, const ModalOptions& options) {
+  ContentHasher h;
+  h.add("fissure modal basis").add(std::int64_t{kFormatVersion});
+  h.add(body.mesh().nodes()).add(Eigen::MatrixXi(body.mesh().tets()));
+  h.add(body.material().youngs_modulus).add(body.material().poisson_ratio).add(body.material().density);
+  std::vector<int> fixed = fixed_dofs;
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  h.add_bytes(fixed.data(), fixed.size() * sizeof(int));
+  h.add(std::int64_t{options.mode_count}).add(std::int64_t{options.mass == MassKind::Lumped ? 0 : 1});
+  h.add(options.tolerance).add(std::int64_t{options.krylov_size});
+  return h.finish();
+}
+
+void ModalBasis::save(const fs::path& path, const Hash128& key) const {
+  std::string out;
+  out.append("FISSMODE");
+  const std::int64_t header[6] = {kFormatVersion, static_cast<std::int64_t>(m_modes.rows()),
+                                  static_cast<std::int64_t>(m_modes.cols()),
+                                  static_cast<std::int64_t>(m_rigid_modes.cols()),
+                                  m_mass == MassKind::Lumped ? 0 : 1, 0};
+  write_pod(out, header, sizeof header);
+  write_pod(out, &key.hi, 8);
+  write_pod(out, &key.lo, 8);
+  write_pod(out, m_eigenvalues.data(), sizeof(double) * static_cast<std::size_t>(m_eigenvalues.size()));
+  write_pod(out, m_rigid_eigenvalues.data(), sizeof(double) * static_cast<std::size_t>(m_rigid_eigenvalues.size()));
+  write_pod(out, m_modes.data(), sizeof(double) * static_cast<std::size_t>(m_modes.size()));
+  write_pod(out, m_rigid_modes.data(), sizeof(double) * static_cast<std::size_t>(m_rigid_modes.size()));
+  write_file_atomically(path, out);
+}
+
+ModalBasis ModalBasis::load(const fs::path& path, const Hash128& expected_key) {
+  const std::string bytes = read_file(path);
+  const std::string name = path.string();
+  std::size_t pos = 0;
+  auto take = [&](void* dst, std::size_t size) {
+    if (pos + size > bytes.size()) throw IoError(name + ": modal basis file is truncated");
+    std::memcpy(dst, bytes.data() + pos, size);
+    pos += size;
+  };
+  char magic[8];
+  take(magic, 8);
+  if (std::memcmp(magic, "FISSMODE", 8) != 0) throw IoError(name + ": not a Fissure modal basis file");
+  std::int64_t header[6];
+  take(header, sizeof header);
+  if (header[0] != kFormatVersion) {
+    throw IoError(name + ": modal basis format version " + std::to_string(header[0]) + ", expected " +
+                  std::to_string(kFormatVersion));
+  }
+  Hash128 key;
+  take(&key.hi, 8);
+  take(&key.lo, 8);
+  if (!(key == expected_key)) throw IoError(name + ": modal basis belongs to another body or options");
+  const std::int64_t rows = header[1], m = header[2], rigid = header[3];
+  if (rows <= 0 || m <= 0 || rigid < 0 || rows > (1LL << 31) || m > 100000 || rigid > rows) {
+    throw IoError(name + ": modal basis header is corrupt");
+  }
+  ModalBasis basis;
+  basis.m_mass = header[4] == 0 ? MassKind::Lumped : MassKind::Consistent;
+  basis.m_eigenvalues.resize(m);
+  basis.m_rigid_eigenvalues.resize(rigid);
+  basis.m_modes.resize(rows, m);
+  basis.m_rigid_modes.resize(rigid > 0 ? rows : 0, rigid);
+  take(basis.m_eigenvalues.data(), sizeof(double) * static_cast<std::size_t>(m));
+  take(basis.m_rigid_eigenvalues.data(), sizeof(double) * static_cast<std::size_t>(rigid));
+  take(basis.m_modes.data(), sizeof(double) * static_cast<std::size_t>(rows * m));
+  take(basis.m_rigid_modes.data(), sizeof(double) * static_cast<std::size_t>(basis.m_rigid_modes.size()));
+  if (pos != bytes.size()) throw IoError(name + ": modal basis file has trailing bytes");
+  return basis;
+}
+
+fs::path default_cache_directory() {
+  if (const char* dir = std::getenv("FISSURE_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "fissure";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "fissure";
+  return fs::temp_directory_path() / "fissure-cache";
+}
+
+ModalBasis cached_modal_basis(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
+                              const ModalOptions& options, const fs::path& cache_dir, bool* loaded,
+                              ProgressSink* progress, const CancelToken* cancel) {
+  const Hash128 key = ModalBasis::cache_key(*body, fixed_dofs, options);
+  const fs::path file = cache_dir / ("modes-" + key.hex() + ".bin");
+  if (loaded) *loaded = false;
+  std::error_code ec;
+  if (fs::exists(file, ec)) {
+    try {
+      ModalBasis basis = ModalBasis::load(file, key);
+      if (loaded) *loaded = true;
+      return basis;
+    } catch (const IoError&) {
+      // A damaged or foreign cache file is recomputed and overwritten below.
+    }
+  }
+  ModalBasis basis = ModalBasis::compute(std::move(body), fixed_dofs, options, progress, cancel);
+  try {
+    fs::create_directories(cache_dir, ec);
+    basis.save(file, key);
+  } catch (const IoError&) {
+    // Caching is an optimisation: an unwritable cache directory must not fail the analysis.
+  }
+  return basis;
+}
+
+}  // namespace fissure
