@@ -15,20 +15,21 @@ std::string format(double v) {
   return out.str();
 }
 
-// Checks one value against its table row.
 void check(const ParameterInfo& info, double value, std::vector<std::string>& problems) {
-  const bool below = info.min_exclusive ? value <= info.min : value < info.min;
-  const bool above = info.max_exclusive ? value >= info.max : value > info.max;
-  if (!std::isfinite(value) || below || above) {
-    problems.push_back(std::string(info.name) + " " + format(value) + " is outside " +
-                       (info.min_exclusive ? "(" : "[") + format(info.min) + ", " +
-                       (std::isinf(info.max) ? "inf" : format(info.max)) +
-                       (info.max_exclusive ? ")" : "]") +
-                       (info.unit[0] ? std::string(" ") + info.unit : std::string()));
-  }
+  std::string problem = parameter_problem(info, value, info.name);
+  if (!problem.empty()) problems.push_back(std::move(problem));
 }
 
 }  // namespace
+
+std::string parameter_problem(const ParameterInfo& info, double value, const std::string& label) {
+  const bool below = info.min_exclusive ? value <= info.min : value < info.min;
+  const bool above = info.max_exclusive ? value >= info.max : value > info.max;
+  if (std::isfinite(value) && !below && !above) return {};
+  return label + " " + format(value) + " is outside " + (info.min_exclusive ? "(" : "[") + format(info.min) +
+         ", " + (std::isinf(info.max) ? "inf" : format(info.max)) + (info.max_exclusive ? ")" : "]") +
+         (info.unit[0] ? std::string(" ") + info.unit : std::string());
+}
 
 const std::array<ParameterInfo, 3>& elastic_material_parameters() {
   constexpr double inf = std::numeric_limits<double>::infinity();
