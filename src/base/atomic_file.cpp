@@ -55,14 +55,18 @@ void write_file_atomically(const fs::path& target, std::string_view bytes) {
   });
 }
 
-void write_atomically(const fs::path& target,
-                      const std::function<void(const fs::path& temp)>& write_to) {
+void check_output_path(const fs::path& target) {
   if (target.empty()) throw IoError("output file name is empty");
   if (fs::is_directory(target)) throw IoError(target.string() + ": is a directory");
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   if (!fs::is_directory(dir)) {
     throw IoError(target.string() + ": directory " + dir.string() + " does not exist");
   }
+}
+
+void write_atomically(const fs::path& target,
+                      const std::function<void(const fs::path& temp)>& write_to) {
+  check_output_path(target);
   const fs::path temp = temporary_beside(target);
   try {
     write_to(temp);

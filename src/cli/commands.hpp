@@ -23,5 +23,8 @@ enum ExitCode : int {
 };
 
 void register_version(CLI::App& app, Action& action);
+void register_mesh(CLI::App& app, Action& action);
+void register_solve(CLI::App& app, Action& action);
+void register_modes(CLI::App& app, Action& action);
 
 }  // namespace fissure::cli

@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", FISSURE_VERSION);
 
   Action action;
+  register_mesh(app, action);
+  register_solve(app, action);
+  register_modes(app, action);
   register_version(app, action);
 
   try {

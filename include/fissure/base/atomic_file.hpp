@@ -19,6 +19,11 @@ void write_file_atomically(const std::filesystem::path& target, std::string_view
 void write_atomically(const std::filesystem::path& target,
                       const std::function<void(const std::filesystem::path& temp)>& write_to);
 
+/// Throws IoError when `target` could not be written atomically: empty name, a directory, or a
+/// missing parent directory. Commands call it before any long computation so a typo in an output
+/// path costs nothing.
+void check_output_path(const std::filesystem::path& target);
+
 /// Reads a whole file. Throws IoError naming the file if it is missing, unreadable or a directory.
 std::string read_file(const std::filesystem::path& path);
 

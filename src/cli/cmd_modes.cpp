@@ -1,0 +1,75 @@
+// fissure modes MESH --E .. --nu .. --rho .. --count k [--fix SEL…] [--mass lumped|consistent]
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+#include "fissure/fem/modal_basis.hpp"
+#include "fissure/fem/supports.hpp"
+#include "fissure/io/msh.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+
+namespace fissure::cli {
+namespace {
+
+struct ModesArgs {
+  std::string mesh;
+  ElasticMaterial material;
+  int count = 10;
+  std::vector<std::string> fix;
+  std::string mass = "lumped";
+  std::string cache_dir;
+  bool no_cache = false;
+};
+
+int run_modes(const ModesArgs& args) {
+  validate_material_flags(args.material);
+  Stopwatch clock;
+  auto mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
+  std::vector<SupportSpec> supports;
+  for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
+  const std::vector<int> fixed = resolve_supports(*mesh, supports);
+  auto body = std::make_shared<const ElasticBody>(mesh, args.material);
+  ModalOptions options;
+  options.mode_count = args.count;
+  options.mass = args.mass == "consistent" ? MassKind::Consistent : MassKind::Lumped;
+  bool loaded = false;
+  const ModalBasis basis =
+      args.no_cache ? ModalBasis::compute(body, fixed, options)
+                    : cached_modal_basis(body, fixed, options,
+                                         args.cache_dir.empty() ? default_cache_directory() : std::filesystem::path(args.cache_dir), &loaded);
+  nlohmann::json out;
+  out["mesh"] = args.mesh;
+  out["tets"] = mesh->tet_count();
+  out["free_body"] = basis.free_body();
+  out["mass"] = args.mass;
+  out["rigid_modes"] = basis.rigid_modes().cols();
+  const Eigen::VectorXd hz = basis.frequencies_hz();
+  std::vector<double> frequencies(hz.data(), hz.data() + hz.size());
+  out["frequencies_hz"] = frequencies;
+  out["cached"] = loaded;
+  out["milliseconds"] = clock.milliseconds();
+  std::cout << out.dump(2) << '\n';
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_modes(CLI::App& app, Action& action) {
+  auto args = std::make_shared<ModesArgs>();
+  auto* cmd = app.add_subcommand("modes", "Lowest natural frequencies of a tet mesh, printed as JSON (Hz)");
+  cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
+  add_material_options(*cmd, args->material, true);
+  cmd->add_option("--count", args->count, "Number of flexible modes")->required()->check(CLI::Range(1, 5000));
+  cmd->add_option("--fix", args->fix, "Support selection, as for solve (repeatable). None: free body (6 rigid modes "
+                                      "per part are excluded)")
+      ->allow_extra_args(false);
+  cmd->add_option("--mass", args->mass, "Mass matrix")->check(CLI::IsMember({"lumped", "consistent"}))->default_val("lumped");
+  cmd->add_option("--cache-dir", args->cache_dir, "Where modal bases are cached");
+  cmd->add_flag("--no-cache", args->no_cache, "Do not read or write the cache");
+  cmd->callback([&action, args] { action = [args] { return run_modes(*args); }; });
+}
+
+}  // namespace fissure::cli

@@ -1,0 +1,140 @@
+// fissure solve MESH --E .. --nu .. [--rho ..] --fix SEL… --load SPEC… [--modes m] -o result.msh
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/fem/load.hpp"
+#include "fissure/fem/modal_basis.hpp"
+#include "fissure/fem/static_solver.hpp"
+#include "fissure/fem/stress.hpp"
+#include "fissure/io/msh.hpp"
+
+#include <cstdio>
+#include <iostream>
+
+namespace fissure::cli {
+namespace {
+
+struct SolveArgs {
+  std::string mesh;
+  std::string output;
+  ElasticMaterial material;
+  std::vector<std::string> fix;
+  std::vector<std::string> load;
+  std::string gravity;
+  int modes = 0;
+  std::string mass = "lumped";
+  std::string cache_dir;
+  bool no_cache = false;
+  int threads = 1;
+  bool binary = false;
+  bool quiet = false;
+};
+
+int run_solve(const SolveArgs& args) {
+  validate_material_flags(args.material);
+  check_output_path(args.output);
+  if (args.load.empty() && args.gravity.empty()) throw InvalidInput("give at least one --load or --gravity");
+  Stopwatch clock;
+  auto mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
+
+  // Loads and supports are checked before any expensive work.
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh->node_count()));
+  for (const std::string& spec : args.load) f += assemble_load(*mesh, parse_load(spec));
+  if (!args.gravity.empty()) {
+    const auto g = parse_triple(args.gravity, "--gravity");
+    f += gravity_load(*mesh, args.material.density, Eigen::Vector3d(g[0], g[1], g[2]));
+  }
+  std::vector<SupportSpec> supports;
+  for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
+  const std::vector<int> fixed = resolve_supports(*mesh, supports);
+  check_supports_for_mechanisms(*mesh, fixed);
+  const MassKind mass = args.mass == "consistent" ? MassKind::Consistent : MassKind::Lumped;
+
+  auto body = std::make_shared<const ElasticBody>(mesh, args.material, args.threads);
+  Eigen::VectorXd u;
+  std::string method;
+  double residual = 0.0;
+  if (args.modes > 0) {
+    ModalOptions options;
+    options.mode_count = args.modes;
+    options.mass = mass;
+    bool loaded = false;
+    const ModalBasis basis =
+        args.no_cache ? ModalBasis::compute(body, fixed, options)
+                      : cached_modal_basis(body, fixed, options,
+                                           args.cache_dir.empty() ? default_cache_directory() : std::filesystem::path(args.cache_dir), &loaded);
+    u = basis.static_displacement(f);
+    method = "modal, " + std::to_string(args.modes) + " modes" + (loaded ? " (cached basis)" : "");
+  } else {
+    StaticSolverOptions options;
+    options.mass = mass;
+    const StaticSolver solver(body, fixed, options);
+    const StaticSolution solution = solver.solve(f);
+    u = solution.displacement;
+    residual = solution.relative_residual;
+    method = "direct";
+  }
+  StressField stress;
+  Eigen::VectorXd max_principal;
+  compute_stress_and_max_principal(*mesh, body->gradients(), args.material, u, stress, max_principal);
+
+  Eigen::MatrixXd displacement(mesh->node_count(), 3);
+  for (int v = 0; v < mesh->node_count(); ++v) displacement.row(v) = u.segment<3>(3 * v).transpose();
+  write_msh(args.output, *mesh,
+            {{"displacement", MshView::Kind::NodeData, displacement},
+             {"stress", MshView::Kind::ElementData, voigt_rows_to_tensor_rows(stress)},
+             {"max_principal_stress", MshView::Kind::ElementData, max_principal}},
+            MshWriteOptions{args.binary});
+  if (!args.quiet) {
+    if (fixed.empty()) std::printf("no --fix: free body, solved by inertia relief\n");
+    char residual_buffer[64] = "";
+    if (args.modes == 0) std::snprintf(residual_buffer, sizeof residual_buffer, ", residual %.1e", residual);
+    const std::string residual_text = residual_buffer;
+    Eigen::Index peak_tet = 0;
+    const double peak = max_principal.maxCoeff(&peak_tet);
+    std::printf("%s: %d tets, %s%s, max |u| %.4g m, peak max principal stress %.4g Pa (tet %ld), %.0f ms -> %s\n",
+                args.mesh.c_str(), mesh->tet_count(), method.c_str(),
+                residual_text.c_str(),
+                displacement.rowwise().norm().maxCoeff(), peak, static_cast<long>(peak_tet), clock.milliseconds(),
+                args.output.c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_solve(CLI::App& app, Action& action) {
+  auto args = std::make_shared<SolveArgs>();
+  auto* cmd = app.add_subcommand("solve", "Static stress of a tet mesh under loads: writes displacement, stress and max "
+                                          "principal stress as gmsh views");
+  cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
+  add_material_options(*cmd, args->material, false);
+  cmd->add_option("--fix", args->fix,
+                  "Support: box:x0,x1,y0,y1,z0,z1 | ball:x,y,z,r | PHYSICAL_GROUP, optionally @x, @yz... to fix only "
+                  "those components (repeatable). None: free body, inertia relief")
+      ->allow_extra_args(false);
+  cmd->add_option("--load", args->load, "Load SEL=fx,fy,fz: total force in N spread area-weighted over the selection's "
+                                        "boundary faces (repeatable)")
+      ->allow_extra_args(false);
+  cmd->add_option("--gravity", args->gravity, "Gravity gx,gy,gz in m/s^2, e.g. 0,0,-9.81");
+  cmd->add_option("--modes", args->modes, "Solve by modal superposition with this many modes (default: direct solve)")
+      ->check(CLI::Range(1, 5000));
+  cmd->add_option("--mass", args->mass, "Mass matrix for modes and inertia relief")
+      ->check(CLI::IsMember({"lumped", "consistent"}))
+      ->default_val("lumped");
+  cmd->add_option("--cache-dir", args->cache_dir, "Where modal bases are cached (default $FISSURE_CACHE_DIR or ~/.cache/fissure)");
+  cmd->add_flag("--no-cache", args->no_cache, "Compute the modal basis without reading or writing the cache");
+  cmd->add_option("--threads", args->threads, "Threads for assembly (results are identical at any count)")
+      ->default_val(1)
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("-o,--output", args->output, "Result file, gmsh MSH 4.1 with views")->required();
+  cmd->add_flag("--binary", args->binary, "Write binary MSH instead of ASCII");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+  cmd->callback([&action, args] { action = [args] { return run_solve(*args); }; });
+}
+
+}  // namespace fissure::cli
