@@ -4,7 +4,9 @@ add_library(fissure_build_flags INTERFACE)
 target_compile_options(fissure_build_flags INTERFACE -Wall -Wextra -Wpedantic -Wno-unused-parameter
   # GCC 12 false positives in system headers: PR 105329 (-Wrestrict on std::string concatenation)
   # and PR 105593 (AVX-512 intrinsics' "__Y may be used uninitialized" through Eigen).
-  -Wno-restrict -Wno-maybe-uninitialized)
+  -Wno-restrict -Wno-maybe-uninitialized
+  # sqrt without errno: lets loops that take square roots vectorise (nothing reads errno).
+  -fno-math-errno)
 if(FISSURE_WARNINGS_AS_ERRORS)
   target_compile_options(fissure_build_flags INTERFACE -Werror)
 endif()

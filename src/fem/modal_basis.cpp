@@ -197,7 +197,19 @@ Eigen::VectorXd ModalBasis::static_displacement(const Eigen::VectorXd& f) const 
     throw InvalidInput("modal solve: load vector has " + std::to_string(f.size()) + " entries, the basis has " +
                        std::to_string(m_modes.rows()) + " dofs");
   }
-  const Eigen::VectorXd q = (m_modes.transpose() * f).cwiseQuotient(m_eigenvalues);
+  // Loads are patches: only the rows of Φ under non-zero forces contribute to Φᵀf, so reading
+  // those rows instead of all of Φ halves the memory traffic (Φ is 6.7 MB at 24K tets, m = 50).
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m_modes.cols());
+  Eigen::Index nonzeros = 0;
+  for (Eigen::Index i = 0; i < f.size(); ++i) nonzeros += f[i] != 0.0;
+  if (nonzeros * 4 < f.size()) {
+    for (Eigen::Index i = 0; i < f.size(); ++i) {
+      if (f[i] != 0.0) q.noalias() += f[i] * m_modes.row(i).transpose();
+    }
+  } else {
+    q.noalias() = m_modes.transpose() * f;
+  }
+  q.array() /= m_eigenvalues.array();
   return m_modes * q;
 }
 

@@ -106,8 +106,9 @@ StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
   Eigen::VectorXd u_free = m_factor.solve(load_free);
   auto residual_of = [&](const Eigen::VectorXd& u_full) -> Eigen::VectorXd {
     // Free body: every dof counts, including the 3-2-1 dofs, whose reactions must vanish.
-    const Eigen::VectorXd r = m_body->stiffness() * u_full - load;
-    return free_body() ? r : m_dofs.restrict_vector(r);
+    // Supported body: the free dofs only, through the smaller reduced K.
+    if (free_body()) return m_body->stiffness() * u_full - load;
+    return m_reduced_stiffness * u_free - load_free;
   };
   Eigen::VectorXd u = m_dofs.expand_vector(u_free);
   Eigen::VectorXd residual = residual_of(u);
@@ -132,8 +133,14 @@ StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
     // Remove the rigid part: u ← u − R Rᵀ M u.
     u -= m_rigid_modes * (m_rigid_modes.transpose() * m_body->mass_times(m_options.mass, u));
   } else {
-    const Eigen::VectorXd reactions = m_body->stiffness() * u - f;
-    for (int d : m_fixed_dofs) out.support_reaction[d % 3] += reactions[d];
+    // Reactions at the fixed dofs only: row d of K is column d (K is symmetric), so each costs
+    // one sparse column instead of a full K·u.
+    const SparseMatrixD& k = m_body->stiffness();
+    for (int d : m_fixed_dofs) {
+      double ku = 0.0;
+      for (SparseMatrixD::InnerIterator it(k, d); it; ++it) ku += it.value() * u[it.row()];
+      out.support_reaction[d % 3] += ku - f[d];
+    }
   }
   out.displacement = std::move(u);
   return out;

@@ -27,7 +27,7 @@ void check_displacements(const TetMesh& mesh, const Eigen::VectorXd& u) {
 // arccos on [−1, 1], Abramowitz & Stegun 4.4.46 (|error| ≤ 2e-8 rad), branch-free so loops
 // vectorise: acos(x) = √(1−|x|)·P(|x|) for x ≥ 0, π − that for x < 0.
 inline double acos_polynomial(double x) {
-  const double ax = std::abs(x);
+  const double ax = x < 0.0 ? -x : x;
   const double p =
       1.5707963050 +
       ax * (-0.2145988016 +
@@ -58,22 +58,29 @@ inline double cos_small(double x) {
 // on that cubic (quadratic convergence from 1e-8 to round-off away from a double root, where the
 // arccos error itself vanishes).
 inline double max_principal(double a, double b, double c, double d, double e, double f) {
+  // Written with selects only (no branches, no guarded divisions) so GCC vectorises the loop
+  // that inlines it.
   const double q = (a + b + c) * (1.0 / 3.0);
   const double a1 = a - q, b1 = b - q, c1 = c - q;
   const double off = d * d + e * e + f * f;
   const double p2 = (a1 * a1 + b1 * b1 + c1 * c1 + 2.0 * off) * (1.0 / 6.0);
   const double p = std::sqrt(p2);
   const double det = a1 * (b1 * c1 - d * d) - f * (f * c1 - d * e) + e * (f * d - b1 * e);
-  const double safe_p = p > 0.0 ? p : 1.0;
+  const bool isotropic = !(p > 0.0);
+  const double safe_p = isotropic ? 1.0 : p;
   double r = det / (2.0 * safe_p * safe_p * safe_p);
-  r = std::clamp(r, -1.0, 1.0);
+  r = r < -1.0 ? -1.0 : (r > 1.0 ? 1.0 : r);
   double t = 2.0 * cos_small(acos_polynomial(r) * (1.0 / 3.0));
-  for (int step = 0; step < 2; ++step) {
-    const double g = t * t * t - 3.0 * t - 2.0 * r;
-    const double dg = 3.0 * t * t - 3.0;
-    t -= dg > 1e-6 ? g / dg : 0.0;
-  }
-  return p > 0.0 ? q + p * t : q;
+  // Two Newton steps on t³ − 3t − 2r = 0; skipped where the derivative vanishes (double root).
+  const double g1 = t * t * t - 3.0 * t - 2.0 * r;
+  const double dg1 = 3.0 * t * t - 3.0;
+  const double step1 = g1 / (dg1 > 1e-6 ? dg1 : 1.0);
+  t -= dg1 > 1e-6 ? step1 : 0.0;
+  const double g2 = t * t * t - 3.0 * t - 2.0 * r;
+  const double dg2 = 3.0 * t * t - 3.0;
+  const double step2 = g2 / (dg2 > 1e-6 ? dg2 : 1.0);
+  t -= dg2 > 1e-6 ? step2 : 0.0;
+  return isotropic ? q : q + p * t;
 }
 
 }  // namespace

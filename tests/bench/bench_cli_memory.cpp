@@ -1,0 +1,70 @@
+// Peak resident memory of the `fissure solve` process with 50 modes on the 54K-tet tile
+// (target ≤ 400 MB, issue 3), measured on a child process with wait4(), so the benchmark's own
+// allocations do not count. Also the whole command's wall time, cache off.
+
+#include "bench_support.hpp"
+
+#include "fissure/io/msh.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace {
+using namespace fissure;
+
+double run_and_measure_mb(const std::vector<std::string>& argv) {
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;
+}
+
+void BM_SolveCommandPeakMemory(benchmark::State& state) {
+  const int target = static_cast<int>(state.range(0));
+  const int modes = static_cast<int>(state.range(1));
+  const auto dir = std::filesystem::temp_directory_path() / "fissure-bench-memory";
+  std::filesystem::create_directories(dir);
+  const auto mesh_file = dir / ("tile" + std::to_string(target) + ".msh");
+  const auto mesh = bench::tile(target);
+  write_msh(mesh_file, *mesh);
+  std::vector<std::string> argv{FISSURE_BINARY_DIR "/bin/fissure", "solve", mesh_file.string(), "--E", "3e10", "--nu", "0.2",
+                                "--load", "ball:0,0,0.05,0.05=0,0,-1e4", "--no-cache", "-q", "-o", (dir / "result.msh").string()};
+  for (const char* s : {"box:-0.5,-0.45,-0.5,-0.45,0,0", "box:0.45,0.5,-0.5,-0.45,0,0", "box:-0.5,-0.45,0.45,0.5,0,0",
+                        "box:0.45,0.5,0.45,0.5,0,0"}) {
+    argv.push_back("--fix");
+    argv.push_back(s);
+  }
+  if (modes > 0) {
+    argv.push_back("--modes");
+    argv.push_back(std::to_string(modes));
+  }
+  double peak = 0.0;
+  for (auto _ : state) peak = run_and_measure_mb(argv);
+  if (peak < 0) state.SkipWithError("fissure solve failed");
+  state.counters["tets"] = mesh->tet_count();
+  state.counters["modes"] = modes;
+  state.counters["peak_rss_mb"] = peak;
+}
+BENCHMARK(BM_SolveCommandPeakMemory)
+    ->Args({54000, 50})
+    ->Args({54000, 0})
+    ->Args({24000, 50})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

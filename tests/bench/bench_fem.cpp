@@ -1,0 +1,162 @@
+// The FEM kernels on the CGAL tile at ~7K / 24K / 54K tets, one core. Targets at 24K (issue 3):
+// assemble K ≤ 50 ms, factor ≤ 100 ms, direct solve ≤ 3 ms, 50 modes ≤ 0.6 s, modal solve
+// (m = 50) ≤ 0.1 ms, stress + max principal for all tets ≤ 0.5 ms.
+
+#include "bench_support.hpp"
+
+#include "fissure/fem/elastic_body.hpp"
+#include "fissure/fem/modal_basis.hpp"
+#include "fissure/fem/static_solver.hpp"
+#include "fissure/fem/stress.hpp"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+using namespace fissure;
+
+void set_size_counters(benchmark::State& state, const TetMesh& mesh) {
+  state.counters["tets"] = mesh.tet_count();
+  state.counters["dofs"] = 3.0 * mesh.node_count();
+}
+
+void BM_AssembleStiffness(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  const TetGradients gradients = compute_tet_gradients(*mesh);
+  const StiffnessPattern pattern(*mesh);
+  const ElasticMaterial material;
+  for (auto _ : state) {
+    SparseMatrixD k = assemble_stiffness(*mesh, gradients, material, pattern);
+    benchmark::DoNotOptimize(k.valuePtr());
+  }
+  set_size_counters(state, *mesh);
+}
+
+// Pattern + gradients + values: the whole cost of building K for a new mesh.
+void BM_AssembleStiffnessFromScratch(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  const ElasticMaterial material;
+  for (auto _ : state) {
+    const TetGradients gradients = compute_tet_gradients(*mesh);
+    const StiffnessPattern pattern(*mesh);
+    SparseMatrixD k = assemble_stiffness(*mesh, gradients, material, pattern);
+    benchmark::DoNotOptimize(k.valuePtr());
+  }
+  set_size_counters(state, *mesh);
+}
+
+void BM_Factorize(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const DofMap dofs(body->stiffness().rows(), bench::corner_supports(*mesh));
+  const Eigen::SparseMatrix<double> k = dofs.restrict_matrix(body->stiffness());
+  SparseCholesky chol;
+  for (auto _ : state) chol.factorize(k);
+  set_size_counters(state, *mesh);
+  state.counters["nnz_L"] = static_cast<double>(chol.factor_nonzeros());
+}
+
+void BM_DirectSolve(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const StaticSolver solver(body, bench::corner_supports(*mesh));
+  const Eigen::VectorXd f = bench::centre_patch(*mesh);
+  double residual = 0.0;
+  for (auto _ : state) {
+    const StaticSolution s = solver.solve(f);
+    residual = s.relative_residual;
+    benchmark::DoNotOptimize(s.displacement.data());
+  }
+  set_size_counters(state, *mesh);
+  state.counters["residual"] = residual;
+}
+
+void BM_Eigensolve50(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const auto fixed = state.range(1) ? bench::corner_supports(*mesh) : std::vector<int>{};
+  ModalOptions options;
+  options.mode_count = 50;
+  double f1 = 0.0;
+  for (auto _ : state) {
+    const ModalBasis basis = ModalBasis::compute(body, fixed, options);
+    f1 = basis.frequencies_hz()[0];
+  }
+  set_size_counters(state, *mesh);
+  state.counters["f1_hz"] = f1;
+  state.counters["supported"] = static_cast<double>(state.range(1));
+}
+
+void BM_ModalSolve50(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  ModalOptions options;
+  options.mode_count = 50;
+  const ModalBasis basis = ModalBasis::compute(body, bench::corner_supports(*mesh), options);
+  const Eigen::VectorXd f = bench::centre_patch(*mesh);
+  for (auto _ : state) {
+    Eigen::VectorXd u = basis.static_displacement(f);
+    benchmark::DoNotOptimize(u.data());
+  }
+  set_size_counters(state, *mesh);
+}
+
+void BM_CacheReload50(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  ModalOptions options;
+  options.mode_count = 50;
+  const auto fixed = bench::corner_supports(*mesh);
+  const auto dir = std::filesystem::temp_directory_path() / "fissure-bench-cache";
+  std::filesystem::create_directories(dir);
+  cached_modal_basis(body, fixed, options, dir);  // fill
+  bool loaded = false;
+  for (auto _ : state) {
+    const ModalBasis basis = cached_modal_basis(body, fixed, options, dir, &loaded);
+    benchmark::DoNotOptimize(basis.modes().data());
+  }
+  set_size_counters(state, *mesh);
+  state.counters["loaded"] = loaded;
+}
+
+void BM_StressAndMaxPrincipal(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const Eigen::VectorXd u = StaticSolver(body, bench::corner_supports(*mesh)).solve(bench::centre_patch(*mesh)).displacement;
+  StressField stress;
+  Eigen::VectorXd smax;
+  for (auto _ : state) {
+    compute_stress_and_max_principal(*mesh, body->gradients(), body->material(), u, stress, smax);
+    benchmark::DoNotOptimize(smax.data());
+  }
+  set_size_counters(state, *mesh);
+}
+
+// The straightforward alternative the fused kernel replaces: Eigen's solver per element.
+void BM_StressEigenPerElement(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const Eigen::VectorXd u = StaticSolver(body, bench::corner_supports(*mesh)).solve(bench::centre_patch(*mesh)).displacement;
+  const StressField stress = compute_stress(*mesh, body->gradients(), body->material(), u);
+  Eigen::VectorXd smax(mesh->tet_count());
+  for (auto _ : state) {
+    for (int t = 0; t < mesh->tet_count(); ++t) smax[t] = principal_stresses(stress.row(t).transpose()).values[0];
+    benchmark::DoNotOptimize(smax.data());
+  }
+  set_size_counters(state, *mesh);
+}
+
+#define FISSURE_SIZES ->Arg(7000)->Arg(24000)->Arg(54000)
+BENCHMARK(BM_AssembleStiffness) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_AssembleStiffnessFromScratch) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Factorize) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DirectSolve) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Eigensolve50)->Args({7000, 1})->Args({24000, 1})->Args({54000, 1})->Args({24000, 0})
+    ->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_ModalSolve50) FISSURE_SIZES->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_CacheReload50) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StressAndMaxPrincipal) FISSURE_SIZES->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StressEigenPerElement)->Arg(24000)->Unit(benchmark::kMicrosecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
