@@ -10,6 +10,9 @@ filter=${1:-.}
 out_dir=$build_dir/bench-results
 mkdir -p "$out_dir"
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+# The commit the figures belong to, recorded before the run.
+commit=$(git -C "$root" rev-parse --short HEAD)
+git -C "$root" diff --quiet HEAD || commit="$commit (with uncommitted changes)"
 for exe in "$build_dir"/tests/bench/bench_*; do
   [[ -x $exe && ! -d $exe ]] || continue
   name=$(basename "$exe")
@@ -18,6 +21,7 @@ for exe in "$build_dir"/tests/bench/bench_*; do
   taskset -c 0 "$exe" --benchmark_repetitions=5 --benchmark_report_aggregates_only=true \
     --benchmark_format=json --benchmark_out="$out_dir/$name.json" \
     --benchmark_out_format=json >/dev/null
+  echo "$commit" >"$out_dir/$name.commit"
 done
 python3 "$root/tests/bench/write_benchmarks_md.py" "$out_dir" "$root/docs/BENCHMARKS.md" \
   "scripts/bench.sh ${1:-}"
