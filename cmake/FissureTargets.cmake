@@ -10,11 +10,16 @@ target_compile_options(fissure_build_flags INTERFACE -Wall -Wextra -Wpedantic -W
 if(FISSURE_WARNINGS_AS_ERRORS)
   target_compile_options(fissure_build_flags INTERFACE -Werror)
 endif()
+# The instruction set is part of every module's interface: Eigen's fixed-size types change
+# alignment with AVX, so code built without the flag that links a module built with it breaks
+# (a probe without it crashed in ~TetMesh with "double free"). Modules therefore pass it on.
+add_library(fissure_arch_flags INTERFACE)
 if(FISSURE_NATIVE)
   # The stress kernel and the modal products vectorise with AVX2/AVX-512. Results are
   # deterministic on one machine; they are not promised bit-identical across CPUs.
-  target_compile_options(fissure_build_flags INTERFACE -march=native)
+  target_compile_options(fissure_arch_flags INTERFACE -march=native)
 endif()
+target_link_libraries(fissure_build_flags INTERFACE fissure_arch_flags)
 
 # fissure_add_module(<name> SOURCES ... PUBLIC_DEPS ... PRIVATE_DEPS ...)
 # Creates the library target fissure_<name> with the alias Fissure::<name>. Public headers live in
@@ -26,7 +31,7 @@ function(fissure_add_module name)
   add_library(Fissure::${name} ALIAS fissure_${name})
   target_include_directories(fissure_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include
                                              PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
-  target_link_libraries(fissure_${name} PUBLIC ${ARG_PUBLIC_DEPS}
+  target_link_libraries(fissure_${name} PUBLIC fissure_arch_flags ${ARG_PUBLIC_DEPS}
                                         PRIVATE fissure_build_flags ${ARG_PRIVATE_DEPS})
 endfunction()
 

@@ -1,5 +1,6 @@
 #include "fissure/base/rng.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <numbers>
 
@@ -56,6 +57,8 @@ double Rng::uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53
 double Rng::uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
 
 std::uint64_t Rng::uniform_index(std::uint64_t n) {
+  assert(n > 0 && "uniform_index needs a non-empty range");
+  if (n == 0) return 0;
   // Lemire-free simple rejection: reject the top partial block so every residue is equally likely.
   const std::uint64_t limit = max() - (max() % n);
   std::uint64_t x;

@@ -26,5 +26,7 @@ void register_version(CLI::App& app, Action& action);
 void register_mesh(CLI::App& app, Action& action);
 void register_solve(CLI::App& app, Action& action);
 void register_modes(CLI::App& app, Action& action);
+void register_analyze(CLI::App& app, Action& action);
+void register_compare(CLI::App& app, Action& action);
 
 }  // namespace fissure::cli

@@ -17,6 +17,8 @@ int main(int argc, char** argv) {
   register_mesh(app, action);
   register_solve(app, action);
   register_modes(app, action);
+  register_analyze(app, action);
+  register_compare(app, action);
   register_version(app, action);
 
   try {

@@ -89,11 +89,16 @@ TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& opt
     cells.push_back(tet);
   }
   if (cells.empty()) throw NumericalFailure(source + ": CGAL produced no tetrahedra");
+  // A degenerate tet here is the mesher's fault, not the user's: report it as a numerical failure.
   Eigen::MatrixX3d nodes(static_cast<Eigen::Index>(points.size()), 3);
   for (std::size_t i = 0; i < points.size(); ++i) nodes.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
   Eigen::MatrixX4i tets(static_cast<Eigen::Index>(cells.size()), 4);
   for (std::size_t i = 0; i < cells.size(); ++i) tets.row(static_cast<Eigen::Index>(i)) = cells[i].transpose();
-  return TetMesh(std::move(nodes), std::move(tets), source);
+  try {
+    return TetMesh(std::move(nodes), std::move(tets), source);
+  } catch (const InvalidInput& e) {
+    throw NumericalFailure(std::string("tetrahedralize produced an invalid mesh: ") + e.what());
+  }
 }
 
 }  // namespace

@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
 namespace fissure {
 namespace {
 namespace fs = std::filesystem;
@@ -118,6 +121,80 @@ TEST_F(Cli, BadInputGivesOneLineAndADistinctCode) {
   expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2" + load + " -o " + (dir / "no/such/dir.msh").string()), 4,
                  "does not exist");
   EXPECT_FALSE(fs::exists(dir / "never.msh"));
+}
+
+// A brick-wall tracing (T junctions) and a honeycomb (Y junctions), drawn by the test.
+void draw_tracings(const fs::path& dir) {
+  cv::Mat bricks(300, 300, CV_8U, cv::Scalar(255));  // black cracks on white, as a pen tracing
+  for (int y = 25; y < 300; y += 50) {
+    cv::line(bricks, {0, y}, {299, y}, cv::Scalar(0), 2);
+    for (int x = ((y / 50) % 2) * 50 + 25; x < 300; x += 100) cv::line(bricks, {x, y}, {x, std::min(y + 50, 299)}, cv::Scalar(0), 2);
+  }
+  cv::imwrite((dir / "bricks.png").string(), bricks);
+  cv::Mat cells(300, 300, CV_8U, cv::Scalar(0));
+  for (int row = -1; row < 12; ++row)
+    for (int col = -1; col < 10; ++col) {
+      std::vector<cv::Point> hex;
+      const double cx = col * 34.64 + (row % 2 ? 17.32 : 0.0), cy = row * 30.0;
+      for (int k = 0; k < 6; ++k) {
+        const double a = (60.0 * k - 30.0) * 3.14159265358979 / 180.0;
+        hex.emplace_back(static_cast<int>(cx + 20.0 * std::cos(a)), static_cast<int>(cy + 20.0 * std::sin(a)));
+      }
+      cv::polylines(cells, hex, true, cv::Scalar(255), 2);
+    }
+  cv::imwrite((dir / "cells.jpg").string(), cells);
+}
+
+TEST_F(Cli, AnalyzeAndCompareTracings) {
+  draw_tracings(dir);
+  const std::string json = (dir / "bricks.json").string(), overlay = (dir / "bricks-overlay.png").string();
+  const auto a = test::run_command(fissure() + " analyze " + (dir / "bricks.png").string() + " --json " + json +
+                                   " --overlay " + overlay);
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  EXPECT_NE(a.output.find("dark cracks"), std::string::npos) << a.output;
+  EXPECT_NE(a.output.find("directional (Eq. 3)"), std::string::npos) << a.output;
+  EXPECT_TRUE(fs::exists(overlay));
+  const auto b = test::run_command(fissure() + " analyze " + (dir / "cells.jpg").string() + " --json " +
+                                   (dir / "cells.json").string());
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_NE(b.output.find("isotropic (Eq. 4)"), std::string::npos) << b.output;
+  // compare: a pattern with itself is 0; bricks and honeycomb differ; image and JSON inputs mix.
+  const auto same = test::run_command(fissure() + " compare " + json + " " + (dir / "bricks.png").string() + " --json");
+  ASSERT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_NE(same.output.find("\"error\": 0,"), std::string::npos) << same.output;
+  const auto differ = test::run_command(fissure() + " compare " + json + " " + (dir / "cells.json").string());
+  ASSERT_EQ(differ.exit_code, 0) << differ.output;
+  EXPECT_NE(differ.output.find("Eq. 5 error"), std::string::npos) << differ.output;
+  EXPECT_EQ(differ.output.find("error 0.0000"), std::string::npos) << differ.output;
+}
+
+TEST_F(Cli, AnalyzeBadInput) {
+  const std::string out = " --json " + (dir / "never.json").string();
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "nope.png").string() + out), 4, "nope.png: no such file");
+  write_file_atomically(dir / "zero.png", "");
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "zero.png").string() + out), 4, "zero.png: file is empty");
+  write_file_atomically(dir / "junk.png", std::string(300, 'j'));
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "junk.png").string() + out), 4, "cannot decode");
+  cv::imwrite((dir / "blank.png").string(), cv::Mat(50, 50, CV_8U, cv::Scalar(255)));
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "blank.png").string() + out), 3, "blank");
+  cv::imwrite((dir / "three.png").string(), cv::Mat(3, 3, CV_8U, cv::Scalar(0)));
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "three.png").string() + out), 3, "smaller than");
+  draw_tracings(dir);
+  cv::imwrite((dir / "roi.png").string(), cv::Mat(10, 10, CV_8U, cv::Scalar(255)));
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "bricks.png").string() + " --roi " +
+                                   (dir / "roi.png").string() + out),
+                 3, "roi.png: region-of-interest mask is 10 x 10");
+  expect_failure(test::run_command(fissure() + " analyze " + (dir / "bricks.png").string() + " --max-megapixels 0.01" + out), 3,
+                 "above the limit");
+  expect_failure(test::run_command(fissure() + " compare " + (dir / "bricks.png").string() + " " + (dir / "zero.png").string()),
+                 4, "zero.png");
+  write_file_atomically(dir / "bad.json", "{\"format\": 1}");
+  expect_failure(test::run_command(fissure() + " compare " + (dir / "bad.json").string() + " " + (dir / "bricks.png").string()),
+                 4, "bad.json: not valid pattern statistics JSON");
+  expect_failure(test::run_command(fissure() + " compare " + (dir / "bricks.png").string() + " " + (dir / "bricks.png").string() +
+                                   " --weights 1,-1,0"),
+                 3, "crack weight");
+  EXPECT_FALSE(fs::exists(dir / "never.json"));
 }
 
 }  // namespace
