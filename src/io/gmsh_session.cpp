@@ -2,6 +2,9 @@
 
 #include <gmsh.h>
 
+#include <clocale>
+#include <locale.h>
+
 #include <vector>
 
 namespace fissure::io_detail {
@@ -13,7 +16,10 @@ std::mutex& gmsh_mutex() {
 }
 
 void initialise_quietly() {
+  // gmsh::initialize calls setlocale(LC_ALL, "") for the whole process; keep the caller's locale.
+  const std::string saved = std::setlocale(LC_ALL, nullptr);
   gmsh::initialize(0, nullptr, false);  // no user config files: output must not depend on them
+  std::setlocale(LC_ALL, saved.c_str());
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 2);  // errors and warnings only
 }
@@ -21,6 +27,10 @@ void initialise_quietly() {
 }  // namespace
 
 GmshSession::GmshSession() : m_lock(gmsh_mutex()) {
+  // gmsh prints numbers with fprintf: under a decimal-comma locale (the studio's, say) it would
+  // write "1,5". The C locale for this thread while gmsh works, restored in the destructor.
+  static const locale_t c_locale = newlocale(LC_ALL_MASK, "C", nullptr);
+  m_previous_locale = uselocale(c_locale);
   static bool initialised = false;
   if (!initialised) {
     initialise_quietly();
@@ -45,6 +55,7 @@ GmshSession::~GmshSession() {
     gmsh::clear();
   } catch (...) {
   }
+  uselocale(m_previous_locale);
 }
 
 std::string GmshSession::logged_errors() const {

@@ -3,6 +3,7 @@
 // with errors thrown (General.AbortOnError 2 throws a std::string); every call holds the lock and
 // starts from an empty model.
 
+#include <locale.h>
 #include <mutex>
 #include <string>
 
@@ -41,6 +42,7 @@ private:
   std::string logged_errors() const;
   void reset();
   std::unique_lock<std::mutex> m_lock;
+  locale_t m_previous_locale = nullptr;
 };
 
 }  // namespace fissure::io_detail

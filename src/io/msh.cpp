@@ -3,6 +3,7 @@
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "gmsh_session.hpp"
+#include "msh_parser.hpp"
 
 #include <gmsh.h>
 
@@ -19,28 +20,6 @@ namespace {
 
 constexpr int kTriangle = 2, kTet = 4, kTet10 = 11, kPoint = 15;
 
-// gmsh reads a truncated file without complaint in several cases (it stops at the cut), so the
-// section structure is checked here first: a header, a supported version, and both node and
-// element sections closed. Binary MSH keeps these markers in ASCII, so the check covers both.
-void check_msh_structure(const fs::path& path) {
-  const std::string bytes = read_file(path);  // IoError when missing or unreadable
-  const std::string name = path.string();
-  if (bytes.empty()) throw IoError(name + ": file is empty");
-  const std::size_t start = bytes.find_first_not_of(" \t\r\n");
-  if (start == std::string::npos || bytes.compare(start, 11, "$MeshFormat") != 0) {
-    throw IoError(name + ": not a gmsh MSH file (no $MeshFormat header)");
-  }
-  const std::size_t version_at = bytes.find_first_not_of(" \t\r\n", start + 11);
-  const std::string version = version_at == std::string::npos ? "" : bytes.substr(version_at, 3);
-  if (version != "2.2" && version != "4.1" && version != "4.0") {
-    throw IoError(name + ": unsupported MSH version '" + version + "' (Fissure reads 2.2 and 4.1)");
-  }
-  for (const char* section : {"$Nodes", "$EndNodes", "$Elements", "$EndElements"}) {
-    if (bytes.find(section) == std::string::npos) {
-      throw IoError(name + ": truncated or corrupt MSH file (no " + section + ")");
-    }
-  }
-}
 
 struct Signature {
   std::vector<int> sets;  // indices of the named sets holding an entity
@@ -53,109 +32,76 @@ struct Signature {
 }  // namespace
 
 TetMesh read_msh(const fs::path& path) {
-  check_msh_structure(path);
   const std::string name = path.string();
-  GmshSession session;
+  const io_detail::MshContent content = io_detail::parse_msh(read_file(path), name);
 
-  std::vector<std::size_t> node_tags, tet_tags, tet_nodes;
-  std::vector<double> coords, parametric;
-  std::size_t tet10_count = 0;
-  std::string error = session.run([&] {
-    gmsh::open(name);
-    gmsh::model::mesh::getNodes(node_tags, coords, parametric, -1, -1, false, false);
-    gmsh::model::mesh::getElementsByType(kTet, tet_tags, tet_nodes);
-    std::vector<std::size_t> t10, n10;
-    gmsh::model::mesh::getElementsByType(kTet10, t10, n10);
-    tet10_count = t10.size();
-  });
-  if (!error.empty()) throw IoError(name + ": gmsh could not read it: " + error);
-  if (tet_tags.empty()) {
-    throw InvalidInput(name + (tet10_count ? ": holds only second-order tets (type 11); Fissure needs linear tets"
-                                           : ": holds no tetrahedra"));
+  // Linear tets in element-tag order. MSH 2.2 writes an element once per physical group it
+  // belongs to, so the same tet can appear under several tags: keep the first, merge groups.
+  std::vector<const io_detail::MshElement*> tet_elements;
+  bool second_order = false;
+  for (const auto& e : content.elements) {
+    if (e.type == kTet) tet_elements.push_back(&e);
+    second_order = second_order || e.type == kTet10;
   }
-
-  // Tets in element-tag order.
-  const std::size_t n_tets = tet_tags.size();
-  std::vector<std::size_t> order(n_tets);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tet_tags[a] < tet_tags[b]; });
-  std::unordered_map<std::size_t, int> tet_index_of_tag;
-  tet_index_of_tag.reserve(n_tets);
-  for (std::size_t k = 0; k < n_tets; ++k) tet_index_of_tag[tet_tags[order[k]]] = static_cast<int>(k);
+  if (tet_elements.empty()) {
+    throw InvalidInput(name + (second_order ? ": holds only second-order tets (type 11); Fissure needs linear tets"
+                                            : ": holds no tetrahedra"));
+  }
+  std::sort(tet_elements.begin(), tet_elements.end(), [](auto* a, auto* b) { return a->tag < b->tag; });
+  std::map<std::array<std::int64_t, 4>, int> tet_of_nodes;
+  std::vector<const io_detail::MshElement*> unique_tets;
+  for (const auto* e : tet_elements) {
+    std::array<std::int64_t, 4> key{e->nodes[0], e->nodes[1], e->nodes[2], e->nodes[3]};
+    std::sort(key.begin(), key.end());
+    if (tet_of_nodes.emplace(key, static_cast<int>(unique_tets.size())).second) unique_tets.push_back(e);
+  }
 
   // Nodes used by tets, renumbered in tag order.
-  std::unordered_map<std::size_t, std::size_t> coord_of_tag;
-  coord_of_tag.reserve(node_tags.size());
-  for (std::size_t i = 0; i < node_tags.size(); ++i) coord_of_tag[node_tags[i]] = i;
-  std::vector<std::size_t> used(tet_nodes.begin(), tet_nodes.end());
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  std::unordered_map<std::size_t, int> index_of_tag;
-  index_of_tag.reserve(used.size());
-  Eigen::MatrixX3d nodes(static_cast<Eigen::Index>(used.size()), 3);
-  for (std::size_t k = 0; k < used.size(); ++k) {
-    const auto it = coord_of_tag.find(used[k]);
-    if (it == coord_of_tag.end()) {
-      throw IoError(name + ": a tet references node tag " + std::to_string(used[k]) + ", which has no coordinates");
-    }
-    index_of_tag[used[k]] = static_cast<int>(k);
-    for (int i = 0; i < 3; ++i) nodes(static_cast<Eigen::Index>(k), i) = coords[3 * it->second + i];
+  std::map<std::int64_t, int> index_of_tag;
+  for (const auto* e : unique_tets)
+    for (std::int64_t v : e->nodes) index_of_tag.emplace(v, 0);
+  int next = 0;
+  for (auto& [tag, index] : index_of_tag) index = next++;
+  Eigen::MatrixX3d nodes(static_cast<Eigen::Index>(index_of_tag.size()), 3);
+  for (const auto& [tag, index] : index_of_tag) {
+    const auto& xyz = content.nodes.at(tag);
+    nodes.row(index) << xyz[0], xyz[1], xyz[2];
   }
-  Eigen::MatrixX4i tets(static_cast<Eigen::Index>(n_tets), 4);
-  for (std::size_t k = 0; k < n_tets; ++k)
-    for (int a = 0; a < 4; ++a) tets(static_cast<Eigen::Index>(k), a) = index_of_tag[tet_nodes[4 * order[k] + a]];
+  Eigen::MatrixX4i tets(static_cast<Eigen::Index>(unique_tets.size()), 4);
+  for (std::size_t t = 0; t < unique_tets.size(); ++t)
+    for (int a = 0; a < 4; ++a) tets(static_cast<Eigen::Index>(t), a) = index_of_tag.at(unique_tets[t]->nodes[static_cast<std::size_t>(a)]);
 
-  // Physical groups → named sets.
-  std::vector<NamedSet> sets;
-  error = session.run([&] {
-    gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups);
-    for (const auto& [dim, tag] : groups) {
-      NamedSet set;
-      gmsh::model::getPhysicalName(dim, tag, set.name);
-      if (set.name.empty()) set.name = "physical_" + std::to_string(dim) + "_" + std::to_string(tag);
-      set.dimension = dim;
-      std::vector<int> entities;
-      gmsh::model::getEntitiesForPhysicalGroup(dim, tag, entities);
-      for (int entity : entities) {
-        if (dim == 3) {
-          std::vector<std::size_t> et, en;
-          gmsh::model::mesh::getElementsByType(kTet, et, en, entity);
-          for (std::size_t t : et) set.tets.push_back(tet_index_of_tag.at(t));
-          for (std::size_t v : en) set.nodes.push_back(index_of_tag.at(v));
-        } else if (dim == 2) {
-          std::vector<std::size_t> et, en;
-          gmsh::model::mesh::getElementsByType(kTriangle, et, en, entity);
-          for (std::size_t f = 0; f + 2 < en.size(); f += 3) {
-            const auto a = index_of_tag.find(en[f]), b = index_of_tag.find(en[f + 1]), c = index_of_tag.find(en[f + 2]);
-            if (a == index_of_tag.end() || b == index_of_tag.end() || c == index_of_tag.end()) continue;
-            set.faces.push_back({a->second, b->second, c->second});
-            set.nodes.insert(set.nodes.end(), {a->second, b->second, c->second});
-          }
-        } else {
-          // Point and curve groups: the nodes of their elements (Fissure writes point elements on
-          // nodes that belong to the volume) and the nodes classified on the entity.
-          std::vector<int> types;
-          std::vector<std::vector<std::size_t>> element_tags, element_nodes;
-          gmsh::model::mesh::getElements(types, element_tags, element_nodes, dim, entity);
-          std::vector<std::size_t> nt;
-          std::vector<double> xyz, uvw;
-          gmsh::model::mesh::getNodes(nt, xyz, uvw, dim, entity, true, false);
-          for (const auto& list : element_nodes) nt.insert(nt.end(), list.begin(), list.end());
-          for (std::size_t v : nt) {
-            const auto it = index_of_tag.find(v);
-            if (it != index_of_tag.end()) set.nodes.push_back(it->second);
-          }
-        }
+  // Physical groups → named sets, ordered by (dimension, tag).
+  std::map<std::pair<int, int>, NamedSet> groups;
+  for (const auto& e : content.elements) {
+    for (int physical : e.physicals) {
+      NamedSet& set = groups[{e.dimension, physical}];
+      bool all_used = true;
+      for (std::int64_t v : e.nodes) all_used = all_used && index_of_tag.count(v);
+      if (!all_used) continue;  // elements off the tet mesh (e.g. a detached curve)
+      for (std::int64_t v : e.nodes) set.nodes.push_back(index_of_tag.at(v));
+      if (e.type == kTet) {
+        std::array<std::int64_t, 4> key{e.nodes[0], e.nodes[1], e.nodes[2], e.nodes[3]};
+        std::sort(key.begin(), key.end());
+        set.tets.push_back(tet_of_nodes.at(key));
+      } else if (e.type == kTriangle) {
+        set.faces.push_back({index_of_tag.at(e.nodes[0]), index_of_tag.at(e.nodes[1]), index_of_tag.at(e.nodes[2])});
       }
-      std::sort(set.nodes.begin(), set.nodes.end());
-      set.nodes.erase(std::unique(set.nodes.begin(), set.nodes.end()), set.nodes.end());
-      std::sort(set.tets.begin(), set.tets.end());
-      sets.push_back(std::move(set));
     }
-  });
-  if (!error.empty()) throw IoError(name + ": gmsh could not read its physical groups: " + error);
-
+  }
+  std::vector<NamedSet> sets;
+  for (auto& [key, set] : groups) {
+    if (set.nodes.empty()) continue;
+    const auto named = content.physical_names.find(key);
+    set.name = named != content.physical_names.end() ? named->second
+                                                     : "physical_" + std::to_string(key.first) + "_" + std::to_string(key.second);
+    set.dimension = key.first;
+    std::sort(set.nodes.begin(), set.nodes.end());
+    set.nodes.erase(std::unique(set.nodes.begin(), set.nodes.end()), set.nodes.end());
+    std::sort(set.tets.begin(), set.tets.end());
+    set.tets.erase(std::unique(set.tets.begin(), set.tets.end()), set.tets.end());
+    sets.push_back(std::move(set));
+  }
   return TetMesh(std::move(nodes), std::move(tets), name, std::move(sets));
 }
 

@@ -12,14 +12,15 @@
 
 namespace fissure {
 
-/// Reads the linear tetrahedra (gmsh element type 4) of a MSH 2.2 or 4.1 file. Physical groups
+/// Reads the linear tetrahedra (gmsh element type 4) of a MSH 2.2 or 4.1 file with Fissure's own
+/// strict parser (gmsh's reader crashes on some corrupt files; see src/io/msh_parser.hpp). Physical groups
 /// become NamedSets: name (or "physical_<dim>_<tag>" when unnamed), dimension, nodes, triangles
 /// of 2-D groups, tets of 3-D groups. Nodes used by no tet are dropped and the rest renumbered in
 /// node-tag order; tets keep element-tag order. The mesh's source_name is the path, so mesh errors
 /// read "file.msh: tet 97 is inverted".
 /// Throws IoError naming the file when it is missing, empty, truncated, corrupt or not MSH, and
-/// InvalidInput when it holds no linear tets (or only second-order ones). Serialised on a global
-/// mutex (gmsh has global state). O(file size).
+/// InvalidInput when it holds no linear tets (or only second-order ones). Thread-safe.
+/// O(file size · log).
 TetMesh read_msh(const std::filesystem::path& path);
 
 /// Post-processing data written beside the mesh: one row per node (NodeData) or per tet
