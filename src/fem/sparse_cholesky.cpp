@@ -24,6 +24,7 @@ struct SparseCholesky::Impl {
   cholmod_common common{};
   cholmod_factor* factor = nullptr;
   int n = 0;
+  int failed_column = -1;
 
   Impl() {
     cholmod_start(&common);
@@ -65,10 +66,12 @@ struct SparseCholesky::Impl {
     cholmod_sparse s = view(a);
     cholmod_factorize(&s, factor, &common);
     if (common.status == CHOLMOD_NOT_POSDEF || factor->minor < factor->n) {
-      const long column = static_cast<long>(factor->minor);
-      throw NumericalFailure("Cholesky factorisation: the matrix is not positive definite (pivot " +
-                             std::to_string(column) + " of " + std::to_string(n) +
-                             " is not positive): an unsupported body, a mechanism or a degenerate mesh");
+      // `minor` counts in the fill-reducing order; Perm maps it back to the caller's column.
+      const std::size_t minor = factor->minor;
+      failed_column = factor->Perm ? static_cast<const int*>(factor->Perm)[minor] : static_cast<int>(minor);
+      throw NumericalFailure("Cholesky factorisation: the matrix is not positive definite (column " +
+                             std::to_string(failed_column) + " of " + std::to_string(n) +
+                             "): an unsupported body, a mechanism or a degenerate mesh");
     }
     if (common.status < CHOLMOD_OK) {
       throw NumericalFailure("Cholesky factorisation failed (CHOLMOD status " +
@@ -104,6 +107,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& a) {
   Impl& impl = *m_impl;
   if (impl.factor) cholmod_free_factor(&impl.factor, &impl.common);
   impl.n = static_cast<int>(a.rows());
+  impl.failed_column = -1;
   cholmod_sparse s = Impl::view(a);
   impl.factor = cholmod_analyze(&s, &impl.common);
   if (!impl.factor) throw NumericalFailure("Cholesky analysis failed (out of memory?)");
@@ -125,6 +129,8 @@ Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const { return m_impl->solve(b); }
 
 int SparseCholesky::rows() const { return m_impl->n; }
+
+int SparseCholesky::failed_column() const { return m_impl->failed_column; }
 
 long SparseCholesky::factor_nonzeros() const {
   if (!m_impl->factor) return 0;

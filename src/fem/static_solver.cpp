@@ -76,7 +76,15 @@ StaticSolver::StaticSolver(std::shared_ptr<const ElasticBody> body, std::vector<
     m_dofs = DofMap(3 * mesh.node_count(), m_fixed_dofs);
   }
   m_reduced_stiffness = m_dofs.restrict_matrix(m_body->stiffness());
-  m_factor.factorize(m_reduced_stiffness);
+  try {
+    m_factor.factorize(m_reduced_stiffness);
+  } catch (const NumericalFailure& e) {
+    const int column = m_factor.failed_column();
+    if (column < 0) throw;
+    const int dof = m_dofs.free_dofs()[static_cast<std::size_t>(column)];
+    throw NumericalFailure(std::string(e.what()) + "; it is dof " + "xyz"[dof % 3] + " of node " + std::to_string(dof / 3) +
+                           (mesh.source_name().empty() ? std::string() : " of " + mesh.source_name()));
+  }
 }
 
 StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {

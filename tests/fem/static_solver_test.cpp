@@ -294,3 +294,33 @@ TEST(Load, GravityAndPatchTotals) {
 
 }  // namespace
 }  // namespace fissure
+
+namespace fissure {
+namespace {
+
+// A matrix that is not positive definite: the failing column is reported in the caller's
+// numbering (CHOLMOD reports it in its own fill-reducing order).
+TEST(SparseCholesky, NamesTheFailingColumn) {
+  const int n = 50;
+  Eigen::SparseMatrix<double> a(n, n);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, i == 37 ? -1.0 : 4.0);
+    if (i + 1 < n) {
+      entries.emplace_back(i, i + 1, 1.0);
+      entries.emplace_back(i + 1, i, 1.0);
+    }
+  }
+  a.setFromTriplets(entries.begin(), entries.end());
+  SparseCholesky chol;
+  try {
+    chol.factorize(a);
+    FAIL();
+  } catch (const NumericalFailure& e) {
+    EXPECT_EQ(chol.failed_column(), 37) << e.what();
+    EXPECT_NE(std::string(e.what()).find("column 37"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace fissure

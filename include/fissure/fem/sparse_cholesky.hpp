@@ -31,6 +31,9 @@ public:
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
 
   int rows() const;
+  /// After a failed factorisation: the column (in the caller's numbering) whose pivot was not
+  /// positive; −1 otherwise.
+  int failed_column() const;
   /// Non-zeros of the factor L.
   long factor_nonzeros() const;
 
