@@ -38,8 +38,9 @@ public:
   /// Lowest `options.mode_count` flexible modes of `body` with the dofs `fixed_dofs` held at zero.
   /// Supported body: shift 0 (K_ff is positive definite). Free body (no fixed dofs): the 6 rigid
   /// motions per component are the exact ones, M-orthonormalised, and deflated from the Lanczos
-  /// iteration, which runs with a shift −0.01·λ_R (λ_R a Rayleigh-quotient upper bound of the
-  /// first flexible eigenvalue; fem-pitfalls.md §2.7 shows −1e-3…−1e-1·λ₇ is safe). That the
+  /// iteration, which runs with a shift −0.01·λ_R (λ_R a Rayleigh–Ritz upper bound of the first
+  /// flexible eigenvalue from quadratic trial fields; fem-pitfalls.md §2.7 shows −1e-3…−1e-1·λ₇
+  /// is safe). That the
   /// rigid motions carry no energy (rᵀKr ≤ 1e-6·λ₇) is checked, so a further zero mode is
   /// reported rather than hidden. Throws InvalidInput for bad options or a mechanism, NumericalFailure
   /// when Spectra does not converge or the spectrum is not what a free body must have, Cancelled
