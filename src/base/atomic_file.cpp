@@ -79,6 +79,13 @@ void write_atomically(const fs::path& target,
   }
 }
 
+void require_nonempty_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");
+  if (fs::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
+  if (fs::file_size(path, ec) == 0) throw IoError(path.string() + ": file is empty");
+}
+
 std::string read_file(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");

@@ -50,4 +50,14 @@ std::array<double, 3> parse_triple(const std::string& text, const std::string& f
   return out;
 }
 
+ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed,
+                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded) {
+  loaded = false;
+  if (no_cache) return ModalBasis::compute(std::move(body), fixed, options);
+  const std::filesystem::path dir = cache_dir.empty() ? default_cache_directory() : std::filesystem::path(cache_dir);
+  return cached_modal_basis(std::move(body), fixed, options, dir, &loaded);
+}
+
+MassKind mass_kind(const std::string& flag) { return flag == "consistent" ? MassKind::Consistent : MassKind::Lumped; }
+
 }  // namespace fissure::cli

@@ -3,6 +3,7 @@
 // load lists, and a stopwatch.
 
 #include "fissure/fem/elastic_material.hpp"
+#include "fissure/fem/modal_basis.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -20,6 +21,14 @@ void validate_material_flags(const ElasticMaterial& material);
 
 /// Parses "a,b,c" into three finite numbers; throws InvalidInput naming `flag`.
 std::array<double, 3> parse_triple(const std::string& text, const std::string& flag);
+
+/// The modal basis for a CLI command: from the cache in `cache_dir` (empty: the default cache
+/// directory) unless `no_cache`; `loaded` tells whether it came from the cache.
+ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed,
+                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded);
+
+/// "lumped" or "consistent" (the --mass flag) as a MassKind.
+MassKind mass_kind(const std::string& flag);
 
 class Stopwatch {
 public:

@@ -34,12 +34,9 @@ int run_modes(const ModesArgs& args) {
   auto body = std::make_shared<const ElasticBody>(mesh, args.material);
   ModalOptions options;
   options.mode_count = args.count;
-  options.mass = args.mass == "consistent" ? MassKind::Consistent : MassKind::Lumped;
+  options.mass = mass_kind(args.mass);
   bool loaded = false;
-  const ModalBasis basis =
-      args.no_cache ? ModalBasis::compute(body, fixed, options)
-                    : cached_modal_basis(body, fixed, options,
-                                         args.cache_dir.empty() ? default_cache_directory() : std::filesystem::path(args.cache_dir), &loaded);
+  const ModalBasis basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded);
   nlohmann::json out;
   out["mesh"] = args.mesh;
   out["tets"] = mesh->tet_count();

@@ -52,7 +52,7 @@ int run_solve(const SolveArgs& args) {
   for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
   const std::vector<int> fixed = resolve_supports(*mesh, supports);
   check_supports_for_mechanisms(*mesh, fixed);
-  const MassKind mass = args.mass == "consistent" ? MassKind::Consistent : MassKind::Lumped;
+  const MassKind mass = mass_kind(args.mass);
 
   auto body = std::make_shared<const ElasticBody>(mesh, args.material, args.threads);
   Eigen::VectorXd u;
@@ -63,10 +63,7 @@ int run_solve(const SolveArgs& args) {
     options.mode_count = args.modes;
     options.mass = mass;
     bool loaded = false;
-    const ModalBasis basis =
-        args.no_cache ? ModalBasis::compute(body, fixed, options)
-                      : cached_modal_basis(body, fixed, options,
-                                           args.cache_dir.empty() ? default_cache_directory() : std::filesystem::path(args.cache_dir), &loaded);
+    const ModalBasis basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded);
     u = basis.static_displacement(f);
     method = "modal, " + std::to_string(args.modes) + " modes" + (loaded ? " (cached basis)" : "");
   } else {

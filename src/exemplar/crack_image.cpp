@@ -1,5 +1,6 @@
 #include "fissure/exemplar/crack_image.hpp"
 
+#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 
 #include <opencv2/imgcodecs.hpp>
@@ -115,11 +116,7 @@ cv::Mat decode(const fs::path& path, const CrackImageOptions& options, int flags
 }  // namespace
 
 std::pair<int, int> image_size_from_header(const fs::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw IoError(name + ": no such file");
-  if (fs::is_directory(path, ec)) throw IoError(name + ": is a directory");
-  if (fs::file_size(path, ec) == 0) throw IoError(name + ": file is empty");
+  require_nonempty_file(path);
   std::ifstream in(path, std::ios::binary);
   std::vector<unsigned char> head(64 * 1024);
   in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));

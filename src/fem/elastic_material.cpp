@@ -54,13 +54,7 @@ std::vector<std::string> ElasticMaterial::problems() const {
   return out;
 }
 
-void ElasticMaterial::validate() const {
-  const auto list = problems();
-  if (list.empty()) return;
-  std::string message = "material: ";
-  for (std::size_t i = 0; i < list.size(); ++i) message += (i ? "; " : "") + list[i];
-  throw InvalidInput(message);
-}
+void ElasticMaterial::validate() const { throw_if_problems("material", problems()); }
 
 Eigen::Matrix<double, 6, 6> ElasticMaterial::elasticity_matrix() const {
   const double lambda = lame_lambda();

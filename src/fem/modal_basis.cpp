@@ -149,13 +149,7 @@ std::vector<std::string> ModalOptions::problems() const {
   return out;
 }
 
-void ModalOptions::validate() const {
-  const auto list = problems();
-  if (list.empty()) return;
-  std::string message = "modal analysis: ";
-  for (std::size_t i = 0; i < list.size(); ++i) message += (i ? "; " : "") + list[i];
-  throw InvalidInput(message);
-}
+void ModalOptions::validate() const { throw_if_problems("modal analysis", problems()); }
 
 ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
                                const ModalOptions& options, ProgressSink* progress, const CancelToken* cancel) {

@@ -1,5 +1,6 @@
 #include "fissure/io/surface_import.hpp"
 
+#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/mesh/tile.hpp"
 
@@ -8,17 +9,12 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
-#include <system_error>
-
 namespace fissure {
 namespace fs = std::filesystem;
 
 SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
   const std::string name = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw IoError(name + ": no such file");
-  if (fs::is_directory(path, ec)) throw IoError(name + ": is a directory");
-  if (fs::file_size(path, ec) == 0) throw IoError(name + ": file is empty");
+  require_nonempty_file(path);
 
   Assimp::Importer importer;
   // Keep triangles only (points and lines bound no volume), and let FBX convert to metres.

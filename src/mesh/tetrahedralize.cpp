@@ -116,13 +116,7 @@ std::vector<std::string> TetrahedralizeOptions::problems() const {
   return out;
 }
 
-void TetrahedralizeOptions::validate() const {
-  const auto list = problems();
-  if (list.empty()) return;
-  std::string message = "tetrahedralize: ";
-  for (std::size_t i = 0; i < list.size(); ++i) message += (i ? "; " : "") + list[i];
-  throw InvalidInput(message);
-}
+void TetrahedralizeOptions::validate() const { throw_if_problems("tetrahedralize", problems()); }
 
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report, ProgressSink* progress, const CancelToken* cancel) {

@@ -8,6 +8,8 @@
 #include <assimp/Exporter.hpp>
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
+#include "test_shapes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -15,31 +17,6 @@
 namespace fissure {
 namespace {
 namespace fs = std::filesystem;
-
-// An L-shaped prism, written by the test in the plain formats: volume 1.5 m³.
-SurfaceMesh l_prism() {
-  SurfaceMesh s;
-  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  s.vertices.resize(12, 3);
-  for (int i = 0; i < 6; ++i) {
-    s.vertices.row(i) << xy[i][0], xy[i][1], 0.0;
-    s.vertices.row(6 + i) << xy[i][0], xy[i][1], 0.5;
-  }
-  std::vector<Eigen::Vector3i> faces;
-  const int cap[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}};
-  for (const auto& t : cap) {
-    faces.emplace_back(t[0], t[2], t[1]);
-    faces.emplace_back(6 + t[0], 6 + t[1], 6 + t[2]);
-  }
-  for (int i = 0; i < 6; ++i) {
-    const int j = (i + 1) % 6;
-    faces.emplace_back(i, j, 6 + j);
-    faces.emplace_back(i, 6 + j, 6 + i);
-  }
-  s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
-  return s;
-}
 
 std::string to_obj(const SurfaceMesh& s) {
   std::ostringstream out;
@@ -88,7 +65,7 @@ std::string to_stl(const SurfaceMesh& s) {
 
 TEST(SurfaceImport, PlainFormatsGiveTheSameSolid) {
   const fs::path dir = test::fresh_temp_dir("import-plain");
-  const SurfaceMesh source = l_prism();
+  const SurfaceMesh source = test::l_prism();
   ASSERT_NEAR(signed_volume(source), 1.5, 1e-15);
   const std::pair<const char*, std::string> files[] = {
       {"l.obj", to_obj(source)}, {"l.off", to_off(source)}, {"l.ply", to_ply(source)}, {"l.stl", to_stl(source)}};
@@ -108,7 +85,7 @@ TEST(SurfaceImport, PlainFormatsGiveTheSameSolid) {
 // block offset is out of range"), a bug of that exporter, not of files from other tools.
 TEST(SurfaceImport, ExportedGltfGlbFbxRoundTrip) {
   const fs::path dir = test::fresh_temp_dir("import-export");
-  write_file_atomically(dir / "l.obj", to_obj(l_prism()));
+  write_file_atomically(dir / "l.obj", to_obj(test::l_prism()));
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile((dir / "l.obj").string(), 0);
   ASSERT_NE(scene, nullptr) << importer.GetErrorString();
@@ -149,14 +126,14 @@ TEST(SurfaceImport, BadFilesAreNamed) {
   expect(dir / "missing.obj", "IoError");
   write_file_atomically(dir / "empty.stl", "");
   expect(dir / "empty.stl", "IoError");
-  const std::string ply = to_ply(l_prism());
+  const std::string ply = to_ply(test::l_prism());
   write_file_atomically(dir / "cut.ply", ply.substr(0, ply.size() / 2));
   expect(dir / "cut.ply", "IoError");
   write_file_atomically(dir / "noise.glb", std::string(2000, '\x5a'));
   expect(dir / "noise.glb", "IoError");
   write_file_atomically(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n");
   expect(dir / "lines.obj", "");  // either error class, as long as it is named
-  SurfaceMesh open = l_prism();
+  SurfaceMesh open = test::l_prism();
   open.faces.conservativeResize(19, 3);
   write_file_atomically(dir / "open.obj", to_obj(open));
   const std::string e = import_error(dir / "open.obj");

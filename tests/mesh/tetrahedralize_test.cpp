@@ -2,6 +2,8 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/mesh/tile.hpp"
 
+#include "test_shapes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -104,35 +106,8 @@ TEST(Tetrahedralize, SameInputSameMesh) {
   EXPECT_TRUE(a.tets() == b.tets());
 }
 
-// A non-convex closed surface: an L-shaped prism.
-SurfaceMesh l_prism() {
-  SurfaceMesh s;
-  s.source_name = "L prism";
-  const double xy[6][2] = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
-  s.vertices.resize(12, 3);
-  for (int i = 0; i < 6; ++i) {
-    s.vertices.row(i) << xy[i][0], xy[i][1], 0.0;
-    s.vertices.row(6 + i) << xy[i][0], xy[i][1], 0.5;
-  }
-  std::vector<Eigen::Vector3i> faces;
-  // Bottom (−z) and top (+z) of the L, fanned from the reflex-free corner 0 and split at 3.
-  const int cap[4][3] = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 5}};
-  for (const auto& t : cap) {
-    faces.emplace_back(t[0], t[2], t[1]);
-    faces.emplace_back(6 + t[0], 6 + t[1], 6 + t[2]);
-  }
-  for (int i = 0; i < 6; ++i) {
-    const int j = (i + 1) % 6;
-    faces.emplace_back(i, j, 6 + j);
-    faces.emplace_back(i, 6 + j, 6 + i);
-  }
-  s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
-  return s;
-}
-
 TEST(Tetrahedralize, NonConvexSurface) {
-  const SurfaceMesh s = l_prism();
+  const SurfaceMesh s = test::l_prism();
   ASSERT_NEAR(signed_volume(s), 1.5, 1e-15);
   TetrahedralizeOptions options;
   options.target_tets = 3000;

@@ -24,6 +24,10 @@ void write_atomically(const std::filesystem::path& target,
 /// path costs nothing.
 void check_output_path(const std::filesystem::path& target);
 
+/// Throws IoError naming the file when it is missing, a directory, or empty: the checks every
+/// reader makes before handing a path to a library whose own messages are vaguer.
+void require_nonempty_file(const std::filesystem::path& path);
+
 /// Reads a whole file. Throws IoError naming the file if it is missing, unreadable or a directory.
 std::string read_file(const std::filesystem::path& path);
 

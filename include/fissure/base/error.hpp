@@ -4,6 +4,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace fissure {
 
@@ -39,5 +41,9 @@ public:
   Cancelled() : Error("cancelled") {}
   using Error::Error;
 };
+
+/// The validate() of an options struct: throws InvalidInput "<context>: p1; p2; …" when
+/// `problems` is not empty.
+void throw_if_problems(std::string_view context, const std::vector<std::string>& problems);
 
 }  // namespace fissure
