@@ -21,16 +21,21 @@ SECTION_NOTES = {
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "
                  "gradients and pattern), factor ≤ 100 ms, direct solve ≤ 3 ms (includes the residual check), "
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
-                 "stress + max principal ≤ 0.5 ms. The modal solve streams Φ (6.7 MB at 24K) once; this "
-                 "machine streams ≈ 29 GB/s beyond 2 MB (measured), so ≈ 0.23 ms is its floor in double "
-                 "precision: the 0.1 ms target assumed the ≈ 100 GB/s L3 of the machine in performance.md.",
+                 "stress + max principal ≤ 0.5 ms. `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "
+                 "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound. On "
+                 "this machine Φ ≤ 2 MB (the L2) streams at ≈ 40 GB/s and beyond it at ≈ 20 GB/s, so at 24K "
+                 "(6.7 MB in double, 3.3 MB in float) the floor is ≈ 0.3 / 0.16 ms: the 0.1 ms target assumed "
+                 "the ≈ 100 GB/s cache of the machine in performance.md. The float error is in "
+                 "`bench_modal_accuracy`.",
     "bench_modal": "Modal analysis (Spectra shift-invert) and the modal static solve.",
     "bench_modal_accuracy": "Time against error of the modal static solve against the direct solve on the 24K "
                             "tile, 10 kN on a 5 cm centre patch. `supported=1`: corner supports; `0`: free body "
                             "(inertia relief). Time = modal solve + stress kernel; `eigensolve_s` = the one-off "
                             "modal analysis for that m; `direct_solve_and_stress_ms` = the exact alternative. "
                             "Errors: displacement L2, volume-weighted stress-tensor L2, and the peak max "
-                            "principal stress, in %.",
+                            "principal stress, in %. `single_precision=1` rows expand with the float copy of Φ: "
+                            "their errors equal the double rows' to the digits shown, so precision costs "
+                            "nothing against truncation.",
     "bench_cli_memory": "Peak resident memory of the whole `fissure solve` process (read, assemble, factor or "
                         "eigensolve, stress, write), measured on a child process. Target: ≤ 400 MB with 50 modes "
                         "on the 54K tile.",

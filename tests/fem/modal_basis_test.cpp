@@ -2,6 +2,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/fem/modal_basis.hpp"
 #include "fissure/fem/sparse_cholesky.hpp"
+#include "fissure/fem/stress.hpp"
 #include "fissure/fem/supports.hpp"
 
 #include "fem_test_meshes.hpp"
@@ -181,6 +182,32 @@ TEST(ModalBasis, ModalSolveApproachesDirectSolve) {
   EXPECT_LT(previous, 1e-3);
 }
 
+// The float copy of Φ changes the answer by round-off only. Each u_i sums m = 30 products of
+// float-rounded terms: worst case |δu_i| ≈ (m + 2)·2⁻²⁴·Σ_k |Φ_ik q_k| ≈ 2e-6 of the terms,
+// typically √m·2⁻²⁴ ≈ 3e-7 (measured 1.1e-7); 1e-5 allows the worst case with a factor 5 of
+// cancellation. Stress is a difference of nodal values: a cantilever's strain is ≈ t·h/L² of
+// u/h (t = 0.1 thick, h = 0.05 elements, L = 1), so round-off in u grows ≈ 200× in stress:
+// 200 × 3e-7 = 6e-5 expected (measured 2.7e-5), tolerance 1e-4.
+TEST(ModalBasis, SinglePrecisionSolveMatchesDouble) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1.0, 0.2, 0.1}, 10, 2, 2);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  const auto supports = fixed(*mesh, "xmin");
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(body->stiffness().rows());
+  for (int v = 0; v < mesh->node_count(); ++v) f[3 * v + 2] = mesh->nodes()(v, 0) > 0.95 ? -100.0 : 0.0;
+  ModalOptions options;
+  options.mode_count = 30;
+  const ModalBasis basis = ModalBasis::compute(body, supports, options);
+  const Eigen::VectorXd u = basis.static_displacement(f, ModalPrecision::Double);
+  const Eigen::VectorXd u_single = basis.static_displacement(f, ModalPrecision::Single);
+  ASSERT_TRUE(u_single.allFinite());
+  const double u_error = (u_single - u).norm() / u.norm();
+  EXPECT_LT(u_error, 1e-5);
+  EXPECT_GT(u_error, 0.0);  // it really ran in float: a bitwise-equal answer would mean it did not
+  const StressField s = compute_stress(*mesh, body->gradients(), body->material(), u);
+  const StressField s_single = compute_stress(*mesh, body->gradients(), body->material(), u_single);
+  EXPECT_LT((s_single - s).norm() / s.norm(), 1e-4);
+}
+
 TEST(ModalBasis, CacheSavesReloadsAndRejectsStaleFiles) {
   const auto dir = test::fresh_temp_dir("modal-cache");
   auto mesh = test::box_mesh({0, 0, 0}, {1.0, 0.2, 0.1}, 10, 2, 2);
@@ -195,6 +222,9 @@ TEST(ModalBasis, CacheSavesReloadsAndRejectsStaleFiles) {
   EXPECT_TRUE(loaded);
   EXPECT_TRUE(first.modes() == second.modes());
   EXPECT_TRUE(first.eigenvalues() == second.eigenvalues());
+  const Eigen::VectorXd f = Eigen::VectorXd::Ones(first.modes().rows());
+  EXPECT_TRUE(first.static_displacement(f, ModalPrecision::Single) ==
+              second.static_displacement(f, ModalPrecision::Single));  // the float copy is rebuilt on load
 
   // Different material, supports or mode count → different key.
   const Hash128 key = ModalBasis::cache_key(*body, supports, options);

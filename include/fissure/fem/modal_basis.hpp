@@ -16,6 +16,11 @@
 
 namespace fissure {
 
+/// Arithmetic of the modal static solve. The solve only streams Φ, so it is memory-bound: Single
+/// reads a float copy of Φ (half the bytes, ≈ 2× faster) and adds a relative error of ≈ 1e-6 in
+/// displacement, four orders below the truncation error of any practical m (BENCHMARKS.md).
+enum class ModalPrecision { Double, Single };
+
 struct ModalOptions {
   int mode_count = 50;                ///< flexible modes wanted (rigid modes come on top)
   MassKind mass = MassKind::Lumped;
@@ -65,8 +70,10 @@ public:
   MassKind mass() const { return m_mass; }
 
   /// Modal static solve u = Σᵢ φᵢ (φᵢᵀ f) / λᵢ over the flexible modes (f: 3·#nodes, N). For a free
-  /// body this is the inertia-relief solution truncated to m modes. O(#dofs · m).
-  Eigen::VectorXd static_displacement(const Eigen::VectorXd& f) const;
+  /// body this is the inertia-relief solution truncated to m modes. O(#dofs · m). Φᵀf is always
+  /// accumulated in double; `precision` picks the arithmetic of the expansion Φq.
+  Eigen::VectorXd static_displacement(const Eigen::VectorXd& f,
+                                      ModalPrecision precision = ModalPrecision::Double) const;
 
   /// The cache key: a hash of mesh, material, fixed dofs, options and the format version.
   static Hash128 cache_key(const ElasticBody& body, const std::vector<int>& fixed_dofs,
@@ -81,6 +88,7 @@ public:
 private:
   Eigen::VectorXd m_eigenvalues;
   Eigen::MatrixXd m_modes;
+  Eigen::MatrixXf m_modes_single;  ///< float copy of m_modes for ModalPrecision::Single (derived, not saved)
   Eigen::MatrixXd m_rigid_modes;
   Eigen::VectorXd m_rigid_eigenvalues;
   MassKind m_mass = MassKind::Lumped;
