@@ -22,11 +22,11 @@ SECTION_NOTES = {
                  "gradients and pattern), factor ≤ 100 ms, direct solve ≤ 3 ms (includes the residual check), "
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
                  "stress + max principal ≤ 0.5 ms. `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "
-                 "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound. On "
-                 "this machine Φ ≤ 2 MB (the L2) streams at ≈ 40 GB/s and beyond it at ≈ 20 GB/s, so at 24K "
-                 "(6.7 MB in double, 3.3 MB in float) the floor is ≈ 0.3 / 0.16 ms: the 0.1 ms target assumed "
-                 "the ≈ 100 GB/s cache of the machine in performance.md. The float error is in "
-                 "`bench_modal_accuracy`.",
+                 "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound. One "
+                 "core of this machine reads ≈ 70–100 GB/s from its 2 MB L2 but ≈ 21–25 GB/s beyond it "
+                 "(`bench_machine`), so at 24K (6.7 MB in double, 3.3 MB in float) the floor is ≈ 0.27 / "
+                 "0.14 ms: the 0.1 ms target assumed the ≈ 100 GB/s L3 of the machine in performance.md. "
+                 "The float copy's error is in `bench_modal_accuracy`.",
     "bench_modal": "Modal analysis (Spectra shift-invert) and the modal static solve.",
     "bench_modal_accuracy": "Time against error of the modal static solve against the direct solve on the 24K "
                             "tile, 10 kN on a 5 cm centre patch. `supported=1`: corner supports; `0`: free body "
@@ -34,11 +34,16 @@ SECTION_NOTES = {
                             "modal analysis for that m; `direct_solve_and_stress_ms` = the exact alternative. "
                             "Errors: displacement L2, volume-weighted stress-tensor L2, and the peak max "
                             "principal stress, in %. `single_precision=1` rows expand with the float copy of Φ: "
-                            "their errors equal the double rows' to the digits shown, so precision costs "
-                            "nothing against truncation.",
+                            "their errors differ from the double rows' by ≤ 0.001 percentage points, so the "
+                            "precision costs nothing against truncation.",
     "bench_cli_memory": "Peak resident memory of the whole `fissure solve` process (read, assemble, factor or "
                         "eigensolve, stress, write), measured on a child process. Target: ≤ 400 MB with 50 modes "
                         "on the 54K tile.",
+    "bench_machine": "The machine itself, to read the other sections against: one core's streaming read "
+                     "bandwidth by working-set size (`working_set_MB`) and its double-precision FMA throughput. "
+                     "The modal solve and the stress kernel are bound by the first, assembly and factorisation "
+                     "by the second. Shared virtual machines differ from day to day by up to 2×: compare a "
+                     "regression against this section of the same run.",
     "bench_exemplar": "Exemplar analysis: traced mask to crack graph to statistics.",
 }
 
