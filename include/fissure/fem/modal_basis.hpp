@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -88,7 +89,14 @@ public:
 private:
   Eigen::VectorXd m_eigenvalues;
   Eigen::MatrixXd m_modes;
-  Eigen::MatrixXf m_modes_single;  ///< float copy of m_modes for ModalPrecision::Single (derived, not saved)
+  /// Float copy of m_modes for ModalPrecision::Single, made on its first use (a basis only ever
+  /// solved in double, as by the CLI, never pays its memory). Shared by copies of the basis,
+  /// whose modes are the same.
+  struct SingleCopy {
+    std::once_flag made;
+    Eigen::MatrixXf modes;
+  };
+  std::shared_ptr<SingleCopy> m_single = std::make_shared<SingleCopy>();
   Eigen::MatrixXd m_rigid_modes;
   Eigen::VectorXd m_rigid_eigenvalues;
   MassKind m_mass = MassKind::Lumped;
