@@ -22,6 +22,7 @@ for exe in "$build_dir"/tests/bench/bench_*; do
     --benchmark_format=json --benchmark_out="$out_dir/$name.json" \
     --benchmark_out_format=json >/dev/null
   echo "$commit" >"$out_dir/$name.commit"
+  echo "scripts/bench.sh ${1:-}" >"$out_dir/$name.command"
 done
 python3 "$root/tests/bench/write_benchmarks_md.py" "$out_dir" "$root/docs/BENCHMARKS.md" \
   "scripts/bench.sh ${1:-}"
