@@ -403,8 +403,9 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
         continue;
       }
       if (list.size() != 2 || list[0] == list[1] || g.nodes[v].is_end) continue;
-      RawEdge& first = g.edges[static_cast<std::size_t>(list[0])];
-      RawEdge& second = g.edges[static_cast<std::size_t>(list[1])];
+      const int list_first = list[0], list_second = list[1];
+      RawEdge& first = g.edges[static_cast<std::size_t>(list_first)];
+      RawEdge& second = g.edges[static_cast<std::size_t>(list_second)];
       // Orient first to end at v and second to start at v, then concatenate.
       if (first.b != static_cast<int>(v)) {
         std::reverse(first.points.begin(), first.points.end());
@@ -419,7 +420,13 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
       second.alive = false;
       g.nodes[v].alive = false;
       if (first.a == static_cast<int>(v) && first.b == static_cast<int>(v)) first.a = first.b = -1;  // now a closed loop
-      inc = g.incidence();
+      // Update the index in place (a rebuild per splice made pruning quadratic in the cracks):
+      // v loses both edges, and second's far end now ends `first` instead.
+      inc[v].clear();
+      if (first.b >= 0) {
+        auto& far = inc[static_cast<std::size_t>(first.b)];
+        std::replace(far.begin(), far.end(), list_second, list_first);
+      }
       changed = true;
     }
     // Contract junction pairs joined by a crack shorter than the crack width.
