@@ -12,6 +12,7 @@
 #include "fissure/fem/stress.hpp"
 #include "fissure/io/msh.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -96,7 +97,7 @@ int run_solve(const SolveArgs& args) {
     std::printf("%s: %d tets, %s%s, max |u| %.4g m, peak max principal stress %.4g Pa (tet %ld), %.0f ms -> %s\n",
                 args.mesh.c_str(), mesh->tet_count(), method.c_str(),
                 residual_text.c_str(),
-                displacement.rowwise().norm().maxCoeff(), peak, static_cast<long>(peak_tet), clock.milliseconds(),
+                std::sqrt(displacement.rowwise().squaredNorm().maxCoeff()), peak, static_cast<long>(peak_tet), clock.milliseconds(),
                 args.output.c_str());
   }
   return kExitOk;
