@@ -36,7 +36,11 @@ SECTION_NOTES = {
                               "concentration that does not converge). Linear tets lock in bending with 1–3 elements "
                               "through 5 cm, so the tile converges slowly and from the stiff side: the reference itself "
                               "is ≈ 11 % too stiff by Richardson extrapolation of the last three levels (rate h^1.65). "
-                              "The stress *pattern* converges much faster than its magnitude (docs/architecture.md).",
+                              "`pattern` / `smooth_pattern`: the max principal stress on a 41 × 41 grid, each field scaled "
+                              "to unit RMS, relative L2 against the reference: pointwise in the tets of the plane "
+                              "z = T/4, and averaged over 3 cm of the bottom half. At fragment scale the pattern "
+                              "converges faster than the magnitude; at element scale it is dominated by the noise of "
+                              "constant-stress tets through a bending plate (docs/architecture.md).",
     "bench_modal": "Modal analysis (Spectra shift-invert) and the modal static solve.",
     "bench_modal_accuracy": "Time against error of the modal static solve against the direct solve on the 24K "
                             "tile, 10 kN on a 5 cm centre patch. `supported=1`: corner supports; `0`: free body "
