@@ -8,6 +8,7 @@
 #include "fissure/fem/modal_basis.hpp"
 #include "fissure/fem/static_solver.hpp"
 #include "fissure/fem/stress.hpp"
+#include "fissure/fem/stress_recovery.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -144,6 +145,33 @@ void BM_StressAndMaxPrincipal(benchmark::State& state) {
   set_size_counters(state, *mesh);
 }
 
+// Building the patch-recovery operator (once per mesh) and applying it to a stress field (once per
+// stress-map step): the sparse product nodal = W · σ_tets, then the per-tet mean of the nodes.
+void BM_StressRecoveryBuild(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  std::int64_t nonzeros = 0;
+  for (auto _ : state) {
+    const StressRecovery recovery(*mesh);
+    nonzeros = recovery.weights().nonZeros();
+    benchmark::DoNotOptimize(nonzeros);
+  }
+  state.counters["weights_per_node"] = static_cast<double>(nonzeros) / mesh->node_count();
+  set_size_counters(state, *mesh);
+}
+
+void BM_StressRecoveryApply(benchmark::State& state) {
+  const auto mesh = bench::tile(static_cast<int>(state.range(0)));
+  auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
+  const Eigen::VectorXd u = StaticSolver(body, bench::corner_supports(*mesh)).solve(bench::centre_patch(*mesh)).displacement;
+  const StressField stress = compute_stress(*mesh, body->gradients(), body->material(), u);
+  const StressRecovery recovery(*mesh);
+  for (auto _ : state) {
+    StressField smoothed = recovery.smoothed_tets(stress);
+    benchmark::DoNotOptimize(smoothed.data());
+  }
+  set_size_counters(state, *mesh);
+}
+
 // The straightforward alternative the fused kernel replaces: Eigen's solver per element.
 void BM_StressEigenPerElement(benchmark::State& state) {
   const auto mesh = bench::tile(static_cast<int>(state.range(0)));
@@ -168,6 +196,8 @@ BENCHMARK(BM_Eigensolve50)->Args({7000, 1})->Args({24000, 1})->Args({54000, 1})-
 BENCHMARK(BM_ModalSolve50)->ArgsProduct({{7000, 24000, 54000}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_CacheReload50) FISSURE_SIZES->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StressAndMaxPrincipal) FISSURE_SIZES->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_StressRecoveryBuild) FISSURE_SIZES->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StressRecoveryApply) FISSURE_SIZES->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StressEigenPerElement)->Arg(24000)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

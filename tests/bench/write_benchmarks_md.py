@@ -21,7 +21,8 @@ SECTION_NOTES = {
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "
                  "gradients and pattern), factor ≤ 100 ms, direct solve ≤ 3 ms (includes the residual check), "
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
-                 "stress + max principal ≤ 0.5 ms. `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "
+                 "stress + max principal ≤ 0.5 ms. `StressRecoveryBuild` / `Apply`: the patch-recovery operator, "
+                 "built once per mesh and applied once per stress field (no target). `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "
                  "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound. One "
                  "core of this machine reads ≈ 70–100 GB/s from its 2 MB L2 but ≈ 21–25 GB/s beyond it "
                  "(`bench_machine`), so at 24K (6.7 MB in double, 3.3 MB in float) the floor is ≈ 0.27 / "
@@ -36,11 +37,13 @@ SECTION_NOTES = {
                               "concentration that does not converge). Linear tets lock in bending with 1–3 elements "
                               "through 5 cm, so the tile converges slowly and from the stiff side: the reference itself "
                               "is ≈ 11 % too stiff by Richardson extrapolation of the last three levels (rate h^1.65). "
-                              "`pattern` / `smooth_pattern`: the max principal stress on a 41 × 41 grid, each field scaled "
-                              "to unit RMS, relative L2 against the reference: pointwise in the tets of the plane "
-                              "z = T/4, and averaged over 3 cm of the bottom half. At fragment scale the pattern "
-                              "converges faster than the magnitude; at element scale it is dominated by the noise of "
-                              "constant-stress tets through a bending plate (docs/architecture.md).",
+                              "Patterns: the max principal stress on a 41 × 41 grid, each field scaled to unit RMS, "
+                              "relative L2 against the reference. `pattern`: the raw tet values in the plane z = T/4, "
+                              "dominated by the scatter of constant-stress tets through a bending plate; "
+                              "`recovered_pattern`: the patch-recovered nodal stress (StressRecovery) interpolated "
+                              "there; `smooth_pattern`: the raw values averaged over 3 cm of the bottom half. "
+                              "Recovery turns a 62 % element-scale pattern error into 7 % at 24K "
+                              "(docs/architecture.md).",
     "bench_modal": "Modal analysis (Spectra shift-invert) and the modal static solve.",
     "bench_modal_accuracy": "Time against error of the modal static solve against the direct solve on the 24K "
                             "tile, 10 kN on a 5 cm centre patch. `supported=1`: corner supports; `0`: free body "
