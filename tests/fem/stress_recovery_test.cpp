@@ -135,6 +135,33 @@ TEST(StressRecovery, SmoothingReducesBendingScatter) {
   EXPECT_LT(patched_error, 0.21) << figures;    // measured 0.193
 }
 
+// The weights depend on shape only: scaling the mesh by 1e-3 or 1e3 (the stability sweep's
+// scales) changes them by round-off (offsets are scaled by the patch radius, volumes normalised
+// by the patch volume), and a mesh with a near-flat sliver gives finite weights.
+TEST(StressRecovery, WeightsAreScaleInvariantAndFinite) {
+  const auto mesh = test::perturbed_box(4, 0.2, 5);
+  const StressRecovery unit(*mesh);
+  for (double scale : {1e-3, 1e3}) {
+    const TetMesh scaled(mesh->nodes() * scale, mesh->tets(), "scaled");
+    const StressRecovery recovery(scaled);
+    ASSERT_EQ(recovery.weights().nonZeros(), unit.weights().nonZeros());
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> difference = recovery.weights() - unit.weights();
+    double worst = 0.0;
+    for (int k = 0; k < difference.outerSize(); ++k)
+      for (Eigen::SparseMatrix<double, Eigen::RowMajor>::InnerIterator it(difference, k); it; ++it)
+        worst = std::max(worst, std::abs(it.value()));
+    EXPECT_LT(worst, 1e-10) << "scale " << scale;
+  }
+  // A sliver: lift one interior node of a 2 × 2 × 2 box almost into the plane of its neighbours.
+  Eigen::MatrixX3d nodes = make_structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 2, 2, 2).nodes();
+  const TetMesh box = make_structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 2, 2, 2);
+  for (int v = 0; v < nodes.rows(); ++v)
+    if ((nodes.row(v).array() - 0.5).abs().maxCoeff() < 1e-12) nodes(v, 2) = 0.5 + 0.49;
+  const TetMesh sliver(nodes, box.tets(), "sliver");
+  const StressRecovery recovery(sliver);
+  for (int k = 0; k < recovery.weights().nonZeros(); ++k) ASSERT_TRUE(std::isfinite(recovery.weights().valuePtr()[k]));
+}
+
 TEST(StressRecovery, WrongSizesAreRefused) {
   const auto mesh = test::box_mesh({0, 0, 0}, {1, 1, 1}, 1, 1, 1);
   const StressRecovery recovery(*mesh);
