@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The test command of the README and of CI: installs what is missing, builds, runs every test.
-# FISSURE_TEST_LABEL=unit (or slow, gui) runs one label only.
+# FISSURE_TEST_LABEL=unit (or slow, bench-smoke, gui) runs one label only.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$root/scripts/install-deps.sh" --gui
