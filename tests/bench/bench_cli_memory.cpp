@@ -1,36 +1,18 @@
 // Peak resident memory of the `fissure solve` process with 50 modes on the 54K-tet tile
-// (target ≤ 400 MB, issue 3), measured on a child process with wait4(), so the benchmark's own
-// allocations do not count. Also the whole command's wall time, cache off.
+// (target ≤ 400 MB, issue 3), measured on a child process (child_peak_memory.hpp), so the
+// benchmark's own allocations do not count. Also the whole command's wall time, cache off.
 
 #include "bench_support.hpp"
+#include "child_peak_memory.hpp"
 
 #include "fissure/io/msh.hpp"
 
 #include <benchmark/benchmark.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <filesystem>
 
 namespace {
 using namespace fissure;
-
-double run_and_measure_mb(const std::vector<std::string>& argv) {
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    execv(args[0], args.data());
-    _exit(127);
-  }
-  int status = 0;
-  rusage usage{};
-  wait4(pid, &status, 0, &usage);
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) return -1.0;
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;
-}
 
 void BM_SolveCommandPeakMemory(benchmark::State& state) {
   const int target = static_cast<int>(state.range(0));
@@ -52,7 +34,7 @@ void BM_SolveCommandPeakMemory(benchmark::State& state) {
     argv.push_back(std::to_string(modes));
   }
   double peak = 0.0;
-  for (auto _ : state) peak = run_and_measure_mb(argv);
+  for (auto _ : state) peak = bench::child_peak_rss_mb(argv);
   if (peak < 0) state.SkipWithError("fissure solve failed");
   state.counters["tets"] = mesh->tet_count();
   state.counters["modes"] = modes;
