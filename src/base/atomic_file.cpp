@@ -79,17 +79,22 @@ void write_atomically(const fs::path& target,
   }
 }
 
-void require_nonempty_file(const fs::path& path) {
+namespace {
+void require_existing_file(const fs::path& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");
   if (fs::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
+}
+}  // namespace
+
+void require_nonempty_file(const fs::path& path) {
+  require_existing_file(path);
+  std::error_code ec;
   if (fs::file_size(path, ec) == 0) throw IoError(path.string() + ": file is empty");
 }
 
 std::string read_file(const fs::path& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw IoError(path.string() + ": no such file");
-  if (fs::is_directory(path, ec)) throw IoError(path.string() + ": is a directory");
+  require_existing_file(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path.string() + ": cannot open for reading");
   std::ostringstream buffer;

@@ -45,16 +45,18 @@ void add_average(const TetMesh& mesh, const std::vector<int>& ring, int v, Tripl
 bool add_patch_fit(const TetMesh& mesh, const std::vector<int>& patch, int v, Triplets& out) {
   if (patch.size() < 4) return false;
   const Eigen::Vector3d node = mesh.nodes().row(v).transpose();
-  // Offsets scaled by the patch radius so the normal matrix is O(1) whatever the units.
-  double radius = 0.0;
-  for (int t : patch) radius = std::max(radius, (mesh.centroid(t) - node).norm());
-  if (!(radius > 0.0)) return false;
-  double total = 0.0;
-  for (int t : patch) total += mesh.volumes()[t];
-  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-  std::vector<Eigen::Vector4d> p(patch.size());
+  std::vector<Eigen::Vector4d> p(patch.size());  // (1, centroid offset / patch radius)
+  double radius = 0.0, total = 0.0;
   for (std::size_t i = 0; i < patch.size(); ++i) {
-    p[i] << 1.0, (mesh.centroid(patch[i]) - node) / radius;
+    p[i] << 1.0, mesh.centroid(patch[i]) - node;
+    radius = std::max(radius, p[i].tail<3>().norm());
+    total += mesh.volumes()[patch[i]];
+  }
+  if (!(radius > 0.0)) return false;
+  // Offsets scaled by the patch radius so the normal matrix is O(1) whatever the units.
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  for (std::size_t i = 0; i < patch.size(); ++i) {
+    p[i].tail<3>() /= radius;
     normal.noalias() += (mesh.volumes()[patch[i]] / total) * p[i] * p[i].transpose();
   }
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(normal, Eigen::EigenvaluesOnly);

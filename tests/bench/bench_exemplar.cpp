@@ -5,6 +5,7 @@
 // PNG so the timing includes decoding as `fissure analyze` does.
 
 #include "child_peak_memory.hpp"
+#include "drawings.hpp"
 
 #include "fissure/base/rng.hpp"
 #include "fissure/exemplar/exemplar_analysis.hpp"
@@ -19,15 +20,11 @@
 namespace {
 using namespace fissure;
 
-// The stress case: vertical lines and lines of slope 1/2, 24 px apart, 3 px strokes (≈ 1.7
-// crossings per 1000 px², thousands of close junction pairs to contract).
+// The stress case: the tests' oblique grid, 24 px pitch, 3 px strokes (≈ 1.7 crossings per
+// 1000 px², thousands of close junction pairs to contract).
 std::filesystem::path make_dense_mask(int size) {
   const auto path = std::filesystem::temp_directory_path() / ("fissure-bench-dense-" + std::to_string(size) + ".png");
-  if (std::filesystem::exists(path)) return path;
-  cv::Mat mask(size, size, CV_8U, cv::Scalar(0));
-  for (int x = 12; x < size; x += 24) cv::line(mask, {x, 0}, {x, size - 1}, cv::Scalar(255), 3);
-  for (int c = -size / 2; c < size; c += 24) cv::line(mask, {0, c}, {size - 1, c + size / 2}, cv::Scalar(255), 3);
-  cv::imwrite(path.string(), mask);
+  if (!std::filesystem::exists(path)) cv::imwrite(path.string(), test::oblique_grid_drawing(size, 24, 3));
   return path;
 }
 

@@ -18,8 +18,6 @@
 
 #include "bench_support.hpp"
 
-#include "fissure/fem/elastic_body.hpp"
-#include "fissure/fem/static_solver.hpp"
 #include "fissure/fem/stress.hpp"
 #include "fissure/fem/stress_recovery.hpp"
 
@@ -27,7 +25,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -132,9 +129,8 @@ double pattern_difference(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 Measures solve_tile(const std::shared_ptr<const TetMesh>& mesh) {
   auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
-  const StaticSolver solver(body, bench::corner_supports(*mesh));
   const Eigen::VectorXd f = bench::centre_patch(*mesh);
-  const Eigen::VectorXd u = solver.solve(f).displacement;
+  const Eigen::VectorXd u = bench::centre_patch_displacement(body);
   StressField stress;
   Eigen::VectorXd smax;
   compute_stress_and_max_principal(*mesh, body->gradients(), body->material(), u, stress, smax);
@@ -159,11 +155,7 @@ Measures solve_tile(const std::shared_ptr<const TetMesh>& mesh) {
 }
 
 const Measures& reference() {
-  static const Measures r = [] {
-    TetrahedralizeOptions options;
-    options.target_tets = 200000;
-    return solve_tile(std::make_shared<const TetMesh>(tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options)));
-  }();
+  static const Measures r = solve_tile(bench::make_tile_mesh(200000));
   return r;
 }
 
@@ -172,11 +164,7 @@ double percent(double value, double reference_value) { return 100.0 * (value - r
 void BM_MeshResolutionVsReference(benchmark::State& state) {
   const Measures& ref = reference();
   Measures m;
-  for (auto _ : state) {
-    TetrahedralizeOptions options;
-    options.target_tets = static_cast<int>(state.range(0));
-    m = solve_tile(std::make_shared<const TetMesh>(tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options)));
-  }
+  for (auto _ : state) m = solve_tile(bench::make_tile_mesh(static_cast<int>(state.range(0))));
   state.counters["tets"] = m.tets;
   state.counters["reference_tets"] = ref.tets;
   state.counters["compliance_err_pct"] = percent(m.compliance, ref.compliance);

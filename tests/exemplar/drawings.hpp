@@ -26,6 +26,16 @@ inline cv::Mat grid_drawing(int size, int pitch, int line_width, bool antialiase
   return c;
 }
 
+/// A dense network of oblique crossings: vertical lines every `pitch` px from pitch/2, and lines
+/// of slope 1/2 whose intercepts step by `pitch` from −size/2. Thick strokes crossing at 63° thin
+/// to pairs of close junctions: the stress case of junction contraction.
+inline cv::Mat oblique_grid_drawing(int size, int pitch, int line_width) {
+  cv::Mat c = blank_canvas(size, size);
+  for (int x = pitch / 2; x < size; x += pitch) cv::line(c, {x, 0}, {x, size - 1}, cv::Scalar(255), line_width);
+  for (int b = -size / 2; b < size; b += pitch) cv::line(c, {0, b}, {size - 1, b + size / 2}, cv::Scalar(255), line_width);
+  return c;
+}
+
 /// A closed grid of `cells` × `cells` squares of `pitch` px, drawn inside a margin (its outer
 /// frame included), centred on a canvas of `size`: every cell is enclosed, the outside is one
 /// region touching the border.

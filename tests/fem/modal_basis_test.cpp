@@ -245,6 +245,13 @@ TEST(ModalBasis, CacheSavesReloadsAndRejectsStaleFiles) {
   EXPECT_FALSE(loaded);
   EXPECT_TRUE(third.modes() == first.modes());
   EXPECT_THROW(ModalBasis::load(file, ModalBasis::cache_key(*stiffer, supports, options)), IoError);
+
+  // A file of the right size and key whose last mode value is a NaN is refused, not solved with.
+  std::string damaged = read_file(file);
+  const double nan = std::nan("");
+  damaged.replace(damaged.size() - sizeof(double), sizeof(double), reinterpret_cast<const char*>(&nan), sizeof(double));
+  write_file_atomically(file, damaged);
+  EXPECT_THROW(ModalBasis::load(file, key), IoError);
 }
 
 TEST(ModalBasis, BadRequestsAreRefused) {
