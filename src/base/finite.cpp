@@ -1,6 +1,7 @@
 #include "fissure/base/finite.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <cmath>
 #include <string>
@@ -15,7 +16,7 @@ void require_finite(const Eigen::Ref<const Eigen::MatrixXd>& values, std::string
                                       ? std::to_string(r)
                                       : "(" + std::to_string(r) + ", " + std::to_string(c) + ")";
         throw NumericalFailure(std::string(what) + ": entry " + where + " is " +
-                               std::to_string(values(r, c)));
+                               format_number(values(r, c)));
       }
     }
   }

@@ -1,4 +1,5 @@
 #include "fissure/base/content_hash.hpp"
+#include "fissure/base/rng.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +7,9 @@ namespace fissure {
 namespace {
 
 TEST(ContentHash, DeterministicAndSensitive) {
-  Eigen::MatrixXd m = Eigen::MatrixXd::Random(50, 3);
+  Rng rng(50);
+  Eigen::MatrixXd m(50, 3);
+  for (Eigen::Index i = 0; i < m.size(); ++i) m.data()[i] = rng.uniform(-1.0, 1.0);
   const Hash128 h1 = ContentHasher().add(m).add("steel").add(std::int64_t{50}).finish();
   const Hash128 h2 = ContentHasher().add(m).add("steel").add(std::int64_t{50}).finish();
   EXPECT_EQ(h1, h2);
