@@ -1,6 +1,7 @@
 #include "fissure/mesh/tet_mesh.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <Eigen/Geometry>
 
@@ -75,43 +76,82 @@ TetShape tet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 }
 
 TetMesh::TetMesh(Eigen::MatrixX3d nodes, Eigen::MatrixX4i tets, std::string source_name,
-                 std::vector<NamedSet> named_sets)
+                 std::vector<NamedSet> named_sets, EntityTags tags)
     : m_nodes(std::move(nodes)),
       m_tets(std::move(tets)),
       m_source_name(std::move(source_name)),
-      m_named_sets(std::move(named_sets)) {
+      m_named_sets(std::move(named_sets)),
+      m_tags(std::move(tags)) {
   validate_and_index();
 }
+
+std::int64_t TetMesh::node_tag(int v) const {
+  return m_tags.nodes.empty() ? std::int64_t{v} + 1 : m_tags.nodes[static_cast<std::size_t>(v)];
+}
+
+std::int64_t TetMesh::tet_tag(int t) const {
+  return m_tags.tets.empty() ? std::int64_t{t} + 1 : m_tags.tets[static_cast<std::size_t>(t)];
+}
+
+std::string TetMesh::node_label(int v) const { return "node " + std::to_string(node_tag(v)); }
+std::string TetMesh::tet_label(int t) const { return "tet " + std::to_string(tet_tag(t)); }
+
+namespace {
+
+// True when the oriented triangles a and b (same three nodes) wind in opposite directions, as
+// the two tets on either side of a face see it.
+bool opposite_winding(const std::array<int, 3>& a, const std::array<int, 3>& b) {
+  int k = 0;
+  while (b[static_cast<std::size_t>(k)] != a[0]) ++k;
+  // b rotated to start at a[0] must read (a[0], a[2], a[1]).
+  return b[static_cast<std::size_t>((k + 1) % 3)] == a[2];
+}
+
+// Interior dihedral angle (radians) of tet (p0..p3) at its edge (i, j): the angle between the
+// other two vertices seen along the edge. atan2 of |u×w| and u·w is accurate at 0 and π alike.
+double dihedral_at_edge(const Eigen::Vector3d p[4], int i, int j) {
+  int k = 0;
+  while (k == i || k == j) ++k;
+  const int l = 6 - i - j - k;
+  const Eigen::Vector3d e = (p[j] - p[i]).normalized();
+  Eigen::Vector3d u = p[k] - p[i], w = p[l] - p[i];
+  u -= u.dot(e) * e;
+  w -= w.dot(e) * e;
+  return std::atan2(u.cross(w).norm(), u.dot(w));
+}
+
+}  // namespace
 
 void TetMesh::validate_and_index() {
   const std::string where = prefix(m_source_name);
   const int n_nodes = node_count();
   const int n_tets = tet_count();
   if (n_tets == 0) throw InvalidInput(where + "mesh has no tetrahedra");
+  if (!m_tags.nodes.empty() && m_tags.nodes.size() != static_cast<std::size_t>(n_nodes)) {
+    throw InvalidInput(where + std::to_string(m_tags.nodes.size()) + " node tags for " + std::to_string(n_nodes) + " nodes");
+  }
+  if (!m_tags.tets.empty() && m_tags.tets.size() != static_cast<std::size_t>(n_tets)) {
+    throw InvalidInput(where + std::to_string(m_tags.tets.size()) + " tet tags for " + std::to_string(n_tets) + " tets");
+  }
 
   for (int i = 0; i < n_nodes; ++i) {
-    if (!m_nodes.row(i).allFinite()) {
-      throw InvalidInput(where + "node " + std::to_string(i) + " has a non-finite coordinate");
-    }
+    if (!m_nodes.row(i).allFinite()) throw InvalidInput(where + node_label(i) + " has a non-finite coordinate");
   }
 
   // Indices, repeated nodes, orientation and volume.
   std::vector<char> used(static_cast<std::size_t>(n_nodes), 0);
   m_volumes.resize(n_tets);
+  m_centroids.resize(n_tets, 3);
   m_total_volume = 0.0;
   for (int t = 0; t < n_tets; ++t) {
     for (int k = 0; k < 4; ++k) {
       const int v = m_tets(t, k);
       if (v < 0 || v >= n_nodes) {
-        throw InvalidInput(where + "tet " + std::to_string(t) + " references node " +
-                           std::to_string(v) + ", but the mesh has " + std::to_string(n_nodes) +
-                           " nodes");
+        throw InvalidInput(where + tet_label(t) + " references node index " + std::to_string(v) + ", but the mesh has " +
+                           std::to_string(n_nodes) + " nodes");
       }
       for (int j = 0; j < k; ++j) {
-        if (m_tets(t, j) == v) {
-          throw InvalidInput(where + "tet " + std::to_string(t) + " uses node " +
-                             std::to_string(v) + " twice");
-        }
+        if (m_tets(t, j) == v) throw InvalidInput(where + tet_label(t) + " uses " + node_label(v) + " twice");
       }
       used[static_cast<std::size_t>(v)] = 1;
     }
@@ -123,61 +163,145 @@ void TetMesh::validate_and_index() {
     const double longest = std::max({(b - a).norm(), (c - a).norm(), (d - a).norm(),
                                      (c - b).norm(), (d - b).norm(), (d - c).norm()});
     if (std::abs(volume) <= kZeroVolume * longest * longest * longest) {
-      throw InvalidInput(where + "tet " + std::to_string(t) + " has zero volume");
+      throw InvalidInput(where + tet_label(t) + " has zero volume");
     }
     if (volume < 0.0) {
-      throw InvalidInput(where + "tet " + std::to_string(t) + " is inverted (volume " +
-                         std::to_string(volume) + " m^3)");
+      throw InvalidInput(where + tet_label(t) + " is inverted (volume " + format_number(volume) + " m^3)");
     }
     m_volumes[t] = volume;
     m_total_volume += volume;
+    m_centroids.row(t) = ((a + b + c + d) / 4.0).transpose();
   }
   for (int i = 0; i < n_nodes; ++i) {
-    if (!used[static_cast<std::size_t>(i)]) {
-      throw InvalidInput(where + "node " + std::to_string(i) + " belongs to no tet");
-    }
+    if (!used[static_cast<std::size_t>(i)]) throw InvalidInput(where + node_label(i) + " belongs to no tet");
   }
 
-  // Face adjacency by sorting the 4·#tets faces on their sorted node triples.
+  // Face adjacency by sorting the 4·#tets faces on their sorted node triples. Two tets sharing
+  // a face must lie on opposite sides of it, i.e. wind it in opposite directions; two on the
+  // same side overlap (a duplicated or stacked tet), and their volume would count twice.
   std::vector<FaceRecord> faces;
   faces.reserve(static_cast<std::size_t>(n_tets) * 4);
   for (int t = 0; t < n_tets; ++t) {
     for (int f = 0; f < 4; ++f) {
-      FaceRecord r{{m_tets(t, kLocalFaces[f][0]), m_tets(t, kLocalFaces[f][1]),
-                    m_tets(t, kLocalFaces[f][2])},
-                   t, f};
+      FaceRecord r{{m_tets(t, kLocalFaces[f][0]), m_tets(t, kLocalFaces[f][1]), m_tets(t, kLocalFaces[f][2])}, t, f};
       std::sort(r.key.begin(), r.key.end());
       faces.push_back(r);
     }
   }
   std::sort(faces.begin(), faces.end());
+  auto oriented = [&](const FaceRecord& r) {
+    const auto& lf = kLocalFaces[static_cast<std::size_t>(r.local_face)];
+    return std::array<int, 3>{m_tets(r.tet, lf[0]), m_tets(r.tet, lf[1]), m_tets(r.tet, lf[2])};
+  };
+  auto face_text = [&](const std::array<int, 3>& key) {
+    return "face (" + node_label(key[0]) + ", " + std::to_string(node_tag(key[1])) + ", " + std::to_string(node_tag(key[2])) + ")";
+  };
   m_neighbours.setConstant(n_tets, 4, -1);
+  m_neighbour_faces.setConstant(n_tets, 4, -1);
+  m_face_ids.setConstant(n_tets, 4, -1);
+  m_face_count = 0;
   m_boundary_faces.clear();
   for (std::size_t i = 0; i < faces.size();) {
     std::size_t j = i + 1;
     while (j < faces.size() && faces[j].key == faces[i].key) ++j;
     if (j - i > 2) {
-      throw InvalidInput(where + "face (" + std::to_string(faces[i].key[0]) + ", " +
-                         std::to_string(faces[i].key[1]) + ", " + std::to_string(faces[i].key[2]) +
-                         ") is shared by " + std::to_string(j - i) + " tets (tets " +
-                         std::to_string(faces[i].tet) + ", " + std::to_string(faces[i + 1].tet) +
-                         ", " + std::to_string(faces[i + 2].tet) + ")");
+      throw InvalidInput(where + face_text(faces[i].key) + " is shared by " + std::to_string(j - i) + " tets (" +
+                         tet_label(faces[i].tet) + ", " + std::to_string(tet_tag(faces[i + 1].tet)) + ", " +
+                         std::to_string(tet_tag(faces[i + 2].tet)) + ")");
     }
+    const FaceRecord& x = faces[i];
+    m_face_ids(x.tet, x.local_face) = m_face_count;
     if (j - i == 2) {
-      m_neighbours(faces[i].tet, faces[i].local_face) = faces[i + 1].tet;
-      m_neighbours(faces[i + 1].tet, faces[i + 1].local_face) = faces[i].tet;
+      const FaceRecord& y = faces[i + 1];
+      if (!opposite_winding(oriented(x), oriented(y))) {
+        std::array<int, 4> ta{}, tb{};
+        for (int k = 0; k < 4; ++k) {
+          ta[static_cast<std::size_t>(k)] = m_tets(x.tet, k);
+          tb[static_cast<std::size_t>(k)] = m_tets(y.tet, k);
+        }
+        std::sort(ta.begin(), ta.end());
+        std::sort(tb.begin(), tb.end());
+        if (ta == tb) throw InvalidInput(where + tet_label(x.tet) + " and " + tet_label(y.tet) + " are the same tet (duplicated)");
+        throw InvalidInput(where + tet_label(x.tet) + " and " + tet_label(y.tet) + " overlap: both lie on the same side of " +
+                           face_text(x.key));
+      }
+      m_neighbours(x.tet, x.local_face) = y.tet;
+      m_neighbours(y.tet, y.local_face) = x.tet;
+      m_neighbour_faces(x.tet, x.local_face) = y.local_face;
+      m_neighbour_faces(y.tet, y.local_face) = x.local_face;
+      m_face_ids(y.tet, y.local_face) = m_face_count;
     } else {
-      const int t = faces[i].tet;
-      const auto& lf = kLocalFaces[faces[i].local_face];
-      m_boundary_faces.push_back(
-          BoundaryFace{t, faces[i].local_face, {m_tets(t, lf[0]), m_tets(t, lf[1]), m_tets(t, lf[2])}});
+      BoundaryFace face{x.tet, x.local_face, oriented(x)};
+      const Eigen::Vector3d a = m_nodes.row(face.nodes[0]), b = m_nodes.row(face.nodes[1]), c = m_nodes.row(face.nodes[2]);
+      const Eigen::Vector3d twice = (b - a).cross(c - a);
+      face.area = 0.5 * twice.norm();
+      face.normal = twice.normalized();
+      m_boundary_faces.push_back(face);
     }
+    ++m_face_count;
     i = j;
   }
-  std::sort(m_boundary_faces.begin(), m_boundary_faces.end(),
-            [](const BoundaryFace& x, const BoundaryFace& y) {
-              return x.tet != y.tet ? x.tet < y.tet : x.local_face < y.local_face;
-            });
+  std::sort(m_boundary_faces.begin(), m_boundary_faces.end(), [](const BoundaryFace& p, const BoundaryFace& q) {
+    return p.tet != q.tet ? p.tet < q.tet : p.local_face < q.local_face;
+  });
+
+  // A mesh folded over itself passes every face test (each face has one tet on either side) but
+  // wraps its interior edges twice: the dihedral angles around an interior edge sum to 2π in
+  // any embedded mesh, 4π or more where tets overlap. O(#tets log #tets).
+  {
+    struct EdgeAngle {
+      std::uint64_t key;
+      double angle;
+      int tet;
+      bool operator<(const EdgeAngle& o) const { return key < o.key; }
+    };
+    std::vector<std::uint64_t> boundary_edges;
+    boundary_edges.reserve(m_boundary_faces.size() * 3);
+    auto edge_key = [](int a, int b) {
+      return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+    };
+    for (const BoundaryFace& f : m_boundary_faces)
+      for (int k = 0; k < 3; ++k) boundary_edges.push_back(edge_key(f.nodes[static_cast<std::size_t>(k)], f.nodes[static_cast<std::size_t>((k + 1) % 3)]));
+    std::sort(boundary_edges.begin(), boundary_edges.end());
+    std::vector<EdgeAngle> angles;
+    angles.reserve(static_cast<std::size_t>(n_tets) * 6);
+    for (int t = 0; t < n_tets; ++t) {
+      Eigen::Vector3d p[4];
+      for (int k = 0; k < 4; ++k) p[k] = m_nodes.row(m_tets(t, k)).transpose();
+      for (int i = 0; i < 4; ++i)
+        for (int j = i + 1; j < 4; ++j) {
+          const std::uint64_t key = edge_key(m_tets(t, i), m_tets(t, j));
+          if (std::binary_search(boundary_edges.begin(), boundary_edges.end(), key)) continue;
+          angles.push_back({key, dihedral_at_edge(p, i, j), t});
+        }
+    }
+    std::sort(angles.begin(), angles.end());
+    for (std::size_t i = 0; i < angles.size();) {
+      std::size_t j = i;
+      double sum = 0.0;
+      while (j < angles.size() && angles[j].key == angles[i].key) sum += angles[j++].angle;
+      // Each angle carries ~1e-15 rad of round-off (more for slivers, still far below 1e-6).
+      if (std::abs(sum - 2.0 * std::numbers::pi) > 1e-6) {
+        const int a = static_cast<int>(angles[i].key >> 32), b = static_cast<int>(angles[i].key & 0xffffffffu);
+        throw InvalidInput(where + "tets overlap around the edge (" + node_label(a) + ", " + std::to_string(node_tag(b)) +
+                           "): their angles there sum to " + format_number(sum * 180.0 / std::numbers::pi, 5) +
+                           " deg instead of 360 (e.g. " + tet_label(angles[i].tet) + ")");
+      }
+      i = j;
+    }
+  }
+
+  // Tets around each node, ascending.
+  m_node_tets.offsets.assign(static_cast<std::size_t>(n_nodes) + 1, 0);
+  for (int t = 0; t < n_tets; ++t)
+    for (int k = 0; k < 4; ++k) ++m_node_tets.offsets[static_cast<std::size_t>(m_tets(t, k)) + 1];
+  for (int v = 0; v < n_nodes; ++v) m_node_tets.offsets[static_cast<std::size_t>(v) + 1] += m_node_tets.offsets[static_cast<std::size_t>(v)];
+  m_node_tets.items.resize(static_cast<std::size_t>(m_node_tets.offsets.back()));
+  {
+    std::vector<int> fill(m_node_tets.offsets.begin(), m_node_tets.offsets.end() - 1);
+    for (int t = 0; t < n_tets; ++t)
+      for (int k = 0; k < 4; ++k) m_node_tets.items[static_cast<std::size_t>(fill[static_cast<std::size_t>(m_tets(t, k))]++)] = t;
+  }
 
   // Connected components of the face-adjacency graph (iterative flood fill).
   m_component_of_tet.assign(static_cast<std::size_t>(n_tets), -1);
@@ -203,30 +327,20 @@ void TetMesh::validate_and_index() {
 
   // Named sets must reference existing nodes.
   for (const NamedSet& set : m_named_sets) {
-    for (int v : set.nodes) {
-      if (v < 0 || v >= n_nodes) {
-        throw InvalidInput(where + "set \"" + set.name + "\" references node " + std::to_string(v));
-      }
-    }
-    for (const auto& face : set.faces) {
-      for (int v : face) {
-        if (v < 0 || v >= n_nodes) {
-          throw InvalidInput(where + "set \"" + set.name + "\" references node " + std::to_string(v));
-        }
-      }
-    }
+    auto bad_node = [&](int v) {
+      throw InvalidInput(where + "set \"" + set.name + "\" references node index " + std::to_string(v) + " of " + std::to_string(n_nodes));
+    };
+    for (int v : set.nodes)
+      if (v < 0 || v >= n_nodes) bad_node(v);
+    for (const auto& face : set.faces)
+      for (int v : face)
+        if (v < 0 || v >= n_nodes) bad_node(v);
     for (int t : set.tets) {
       if (t < 0 || t >= n_tets) {
-        throw InvalidInput(where + "set \"" + set.name + "\" references tet " + std::to_string(t));
+        throw InvalidInput(where + "set \"" + set.name + "\" references tet index " + std::to_string(t) + " of " + std::to_string(n_tets));
       }
     }
   }
-}
-
-Eigen::Vector3d TetMesh::centroid(int tet) const {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 4; ++k) c += m_nodes.row(m_tets(tet, k)).transpose();
-  return c / 4.0;
 }
 
 Eigen::Matrix<double, 2, 3> TetMesh::bounding_box() const {

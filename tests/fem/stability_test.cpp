@@ -79,9 +79,12 @@ TEST(Stability, NearFlatSliver) {
         0, 1, 0,       //
         0.5, 0.5, 1,   // top apex
         0.5, 0.5, -1;  // bottom apex
-    // The sliver (0,1,2,3) and caps on its four faces, each on the outer side.
+    // The sliver (0,1,2,3) and caps on its four faces, each on the outer side: node 2 is lifted,
+    // so the faces through the diagonal 0–2, (0,1,2) and (0,2,3), are its top and take the top
+    // apex; (0,1,3) and (1,2,3) are its bottom. (The caps were once on the wrong faces, stacked
+    // on the sliver: TetMesh now refuses that.)
     Eigen::MatrixX4i tets(5, 4);
-    tets << 0, 1, 2, 3, 0, 1, 3, 5, 1, 2, 3, 4, 0, 1, 2, 5, 0, 2, 3, 4;
+    tets << 0, 1, 2, 3, 0, 1, 3, 5, 1, 2, 3, 5, 0, 1, 2, 4, 0, 2, 3, 4;
     for (int t = 0; t < 5; ++t) {
       const Eigen::Vector3d a = nodes.row(tets(t, 0)), b = nodes.row(tets(t, 1)), c = nodes.row(tets(t, 2)),
                             d = nodes.row(tets(t, 3));

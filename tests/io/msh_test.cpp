@@ -228,7 +228,8 @@ TEST(Msh, BadFilesAreRefusedWithTheFileNamed) {
   }
   text += "$EndElements\n";
   write_file_atomically(dir / "inverted.msh", text);
-  expect(dir / "inverted.msh", "InvalidInput", "tet 3 is inverted");
+  // Named by its element tag in the file (t + 1 = 4), as gmsh shows it.
+  expect(dir / "inverted.msh", "InvalidInput", "tet 4 is inverted");
 
   // A directory named like a mesh.
   fs::create_directories(dir / "folder.msh");

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,25 @@ struct BoundaryFace {
   int tet = -1;        ///< the tet that owns the face
   int local_face = 0;  ///< 0–3: the face opposite the tet's local node `local_face`
   std::array<int, 3> nodes{};
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  ///< outward unit normal
+  double area = 0.0;                                 ///< m²
+};
+
+/// The numbers a user's tools show for nodes and tets (gmsh's node and element tags, 1-based),
+/// used in every message that names one. Empty: node v is tag v + 1, tet t is tag t + 1, which
+/// is what Fissure's own .msh files write.
+struct EntityTags {
+  std::vector<std::int64_t> nodes;
+  std::vector<std::int64_t> tets;
+};
+
+/// Compressed rows: the items of row r are items[offsets[r] .. offsets[r + 1]).
+struct Incidence {
+  std::vector<int> offsets;
+  std::vector<int> items;
+  int size(int row) const { return offsets[static_cast<std::size_t>(row) + 1] - offsets[static_cast<std::size_t>(row)]; }
+  const int* begin(int row) const { return items.data() + offsets[static_cast<std::size_t>(row)]; }
+  const int* end(int row) const { return items.data() + offsets[static_cast<std::size_t>(row) + 1]; }
 };
 
 /// Shape measures over all tets. Angles in degrees. radius_ratio = 3·inradius / circumradius
@@ -55,13 +75,14 @@ public:
 
   TetMesh() = default;
 
-  /// Validates and indexes the mesh. `source_name` (file or spec) prefixes error messages.
-  /// Throws InvalidInput naming the culprit for: non-finite coordinates; node indices out of
-  /// range or repeated within a tet; a node used by no tet; an inverted tet or one whose volume is
-  /// zero to round-off (|V| ≤ 1e-12·ℓ³, ℓ its longest edge); a face shared by more than two tets.
+  /// Validates and indexes the mesh. `source_name` (file or spec) prefixes error messages, which
+  /// name nodes and tets by `tags` (see EntityTags). Throws InvalidInput naming the culprit for:
+  /// non-finite coordinates; node indices out of range or repeated within a tet; a node used by
+  /// no tet; an inverted tet or one whose volume is zero to round-off (|V| ≤ 1e-12·ℓ³, ℓ its
+  /// longest edge); a face shared by more than two tets; tags of the wrong count.
   /// O(#tets log #tets).
   TetMesh(Eigen::MatrixX3d nodes, Eigen::MatrixX4i tets, std::string source_name = {},
-          std::vector<NamedSet> named_sets = {});
+          std::vector<NamedSet> named_sets = {}, EntityTags tags = {});
 
   const Eigen::MatrixX3d& nodes() const { return m_nodes; }
   const Eigen::MatrixX4i& tets() const { return m_tets; }
@@ -69,15 +90,34 @@ public:
   int tet_count() const { return static_cast<int>(m_tets.rows()); }
   const std::string& source_name() const { return m_source_name; }
 
+  /// The tag users see for node `v` / tet `t` (1-based unless the file said otherwise), and
+  /// "node 12" / "tet 97" phrases built from them for messages.
+  std::int64_t node_tag(int v) const;
+  std::int64_t tet_tag(int t) const;
+  std::string node_label(int v) const;
+  std::string tet_label(int t) const;
+  const EntityTags& tags() const { return m_tags; }
+
   /// Volume of every tet, m³ (positive).
   const Eigen::VectorXd& volumes() const { return m_volumes; }
   double total_volume() const { return m_total_volume; }
-  Eigen::Vector3d centroid(int tet) const;
+  /// Centroid of every tet (row t), m.
+  const Eigen::MatrixX3d& centroids() const { return m_centroids; }
+  Eigen::Vector3d centroid(int tet) const { return m_centroids.row(tet).transpose(); }
   /// Axis-aligned bounds of the nodes: row 0 the minimum corner, row 1 the maximum.
   Eigen::Matrix<double, 2, 3> bounding_box() const;
 
   /// neighbours()(t, f) is the tet across local face f of tet t, or −1 on the boundary.
   const Eigen::MatrixX4i& neighbours() const { return m_neighbours; }
+  /// neighbour_faces()(t, f) is the local face of neighbours()(t, f) that is the same triangle
+  /// (−1 on the boundary): crossing face f of t arrives through that face of the neighbour.
+  const Eigen::MatrixX4i& neighbour_faces() const { return m_neighbour_faces; }
+  /// Global face ids: face_ids()(t, f) in [0, face_count()); the two tets sharing a triangle give
+  /// it the same id. Numbered in order of the sorted node triples, so deterministic.
+  const Eigen::MatrixX4i& face_ids() const { return m_face_ids; }
+  int face_count() const { return m_face_count; }
+  /// Tets around each node (row v: the tets that use node v, ascending).
+  const Incidence& node_tets() const { return m_node_tets; }
   /// Every boundary triangle, outward-wound, sorted by (tet, local face).
   const std::vector<BoundaryFace>& boundary_faces() const { return m_boundary_faces; }
   /// The boundary as a surface (same node indices; unused nodes are simply not referenced).
@@ -106,9 +146,15 @@ private:
   Eigen::MatrixX4i m_tets;
   std::string m_source_name;
   std::vector<NamedSet> m_named_sets;
+  EntityTags m_tags;
   Eigen::VectorXd m_volumes;
   double m_total_volume = 0.0;
+  Eigen::MatrixX3d m_centroids;
   Eigen::MatrixX4i m_neighbours;
+  Eigen::MatrixX4i m_neighbour_faces;
+  Eigen::MatrixX4i m_face_ids;
+  int m_face_count = 0;
+  Incidence m_node_tets;
   std::vector<BoundaryFace> m_boundary_faces;
   std::vector<int> m_component_of_tet;
   int m_component_count = 0;
