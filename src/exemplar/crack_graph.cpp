@@ -2,6 +2,9 @@
 
 #include "fissure/exemplar/skeleton.hpp"
 
+#include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -118,13 +121,35 @@ std::vector<Eigen::Vector2d> simplify(const std::vector<Eigen::Vector2d>& points
 
 }  // namespace
 
+std::vector<std::string> CrackGraphOptions::problems() const {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : {std::pair{"spur_factor", spur_factor}, std::pair{"spur_min_px", spur_min_px},
+                                    std::pair{"merge_factor", merge_factor}, std::pair{"fragment_width_factor", fragment_width_factor},
+                                    std::pair{"simplify_px", simplify_px}}) {
+    if (!std::isfinite(value) || value < 0.0) out.push_back(std::string(name) + " " + format_number(value) + " is negative or not finite");
+  }
+  if (min_fragment_px < 0) out.push_back("min_fragment_px " + std::to_string(min_fragment_px) + " is negative");
+  if (border_px < 0) out.push_back("border_px " + std::to_string(border_px) + " is negative");
+  if (smoothing_points < 0 || smoothing_points > kMaxSmoothingPoints) {
+    out.push_back("smoothing_points " + std::to_string(smoothing_points) + " is outside [0, " + std::to_string(kMaxSmoothingPoints) + "]");
+  }
+  return out;
+}
+
+void CrackGraphOptions::validate() const { throw_if_problems("crack graph options", problems()); }
+
 PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOptions& options,
                                      CrackGraphDiagnostics* diagnostics_out, std::vector<std::uint8_t>* skeleton_out,
                                      std::vector<std::int32_t>* labels_out) {
+  options.validate();
   static const auto crossing_table = make_crossing_table();
   CrackGraphDiagnostics diag;
   const int w = mask.width, h = mask.height;
   const std::size_t n = static_cast<std::size_t>(w) * h;
+  if (w < 1 || h < 1 || mask.crack.size() != n || (!mask.roi.empty() && mask.roi.size() != n)) {
+    throw InvalidInput(mask.source + ": crack mask of " + std::to_string(w) + " x " + std::to_string(h) + " holds " +
+                       std::to_string(mask.crack.size()) + " crack and " + std::to_string(mask.roi.size()) + " ROI pixels");
+  }
 
   // Cracks outside the region of interest do not count.
   std::vector<std::uint8_t> crack(n);
@@ -463,49 +488,36 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
     }
   }
 
-  // The final graph.
-  PlanarCrackGraph graph;
-  graph.source = mask.source;
-  graph.crack_width = width;
-  graph.frame_min = Eigen::Vector2d(-0.5, -0.5);
-  graph.frame_max = Eigen::Vector2d(w - 0.5, h - 0.5);
-  const auto inc = g.incidence();
-  std::vector<int> new_id(g.nodes.size(), -1);
-  for (std::size_t v = 0; v < g.nodes.size(); ++v) {
-    if (!g.nodes[v].alive || inc[v].empty()) continue;
-    CrackNode node;
-    node.position = g.nodes[v].position;
-    node.degree = static_cast<int>(inc[v].size());
-    if (node.degree >= 3) {
-      node.kind = CrackNode::Kind::Junction;
-    } else {
-      node.kind = near_border(node.position) ? CrackNode::Kind::Border : CrackNode::Kind::End;
-    }
-    new_id[v] = static_cast<int>(graph.nodes.size());
-    graph.nodes.push_back(node);
-  }
-  for (const RawEdge& e : g.edges) {
-    if (!e.alive) continue;
-    Crack c;
-    c.points = e.points;
-    c.start_node = e.a >= 0 ? new_id[static_cast<std::size_t>(e.a)] : -1;
-    c.end_node = e.b >= 0 ? new_id[static_cast<std::size_t>(e.b)] : -1;
-    if (c.start_node >= 0) c.points.front() = graph.nodes[static_cast<std::size_t>(c.start_node)].position;
-    if (c.end_node >= 0) c.points.back() = graph.nodes[static_cast<std::size_t>(c.end_node)].position;
-    c.points = simplify(smooth(c.points, options.smoothing_points), options.simplify_px);
-    graph.cracks.push_back(std::move(c));
-  }
-
-  // Fragments: the 4-connected regions of non-crack pixels inside the fractured area that are
-  // large enough (labelled above). A crack pixel separates regions even where the skeleton was
-  // pruned, as in the tracing itself.
+  // The final graph, through the builder: node degrees and kinds follow from the cracks.
   std::int64_t total_area = 0;
   if (mask.roi.empty()) {
     total_area = static_cast<std::int64_t>(n);
   } else {
     for (std::uint8_t r : mask.roi) total_area += r != 0;
   }
-  graph.total_area = static_cast<double>(total_area);
+  PlanarCrackGraphBuilder builder(Eigen::Vector2d(-0.5, -0.5), Eigen::Vector2d(w - 0.5, h - 0.5),
+                                  static_cast<double>(total_area), mask.source);
+  builder.set_crack_width(width);
+  const auto inc = g.incidence();
+  std::vector<int> new_id(g.nodes.size(), -1);
+  for (std::size_t v = 0; v < g.nodes.size(); ++v) {
+    if (!g.nodes[v].alive || inc[v].empty()) continue;
+    new_id[v] = builder.add_node(g.nodes[v].position, near_border(g.nodes[v].position));
+  }
+  for (const RawEdge& e : g.edges) {
+    if (!e.alive) continue;
+    std::vector<Eigen::Vector2d> points = e.points;
+    const int start = e.a >= 0 ? new_id[static_cast<std::size_t>(e.a)] : -1;
+    const int end = e.b >= 0 ? new_id[static_cast<std::size_t>(e.b)] : -1;
+    if (e.a >= 0) points.front() = g.nodes[static_cast<std::size_t>(e.a)].position;
+    if (e.b >= 0) points.back() = g.nodes[static_cast<std::size_t>(e.b)].position;
+    builder.add_crack(simplify(smooth(points, options.smoothing_points), options.simplify_px), start, end);
+  }
+
+  // Fragments: the 4-connected regions of non-crack pixels inside the fractured area that are
+  // large enough (labelled above). A crack pixel separates regions even where the skeleton was
+  // pruned, as in the tracing itself.
+  std::vector<Fragment> fragments;
   const double min_area = std::max(min_fragment_area, std::pow(options.fragment_width_factor * width, 2));
   std::vector<std::int32_t> fragment_of(static_cast<std::size_t>(region_count), -1);
   for (int label = 1; label < region_count; ++label) {
@@ -522,8 +534,8 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
     const int right = left + stats.at<int>(label, cv::CC_STAT_WIDTH) - 1;
     const int bottom = top + stats.at<int>(label, cv::CC_STAT_HEIGHT) - 1;
     f.touches_border = left == 0 || top == 0 || right == w - 1 || bottom == h - 1;
-    fragment_of[static_cast<std::size_t>(label)] = static_cast<std::int32_t>(graph.fragments.size());
-    graph.fragments.push_back(f);
+    fragment_of[static_cast<std::size_t>(label)] = static_cast<std::int32_t>(fragments.size());
+    fragments.push_back(f);
   }
   auto fragment_at = [&](std::size_t i) { return fragment_of[static_cast<std::size_t>(labels.ptr<int>(0)[i])]; };
   if (!mask.roi.empty()) {
@@ -531,16 +543,16 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
         const int id = fragment_at(static_cast<std::size_t>(y) * w + x);
-        if (id < 0 || graph.fragments[static_cast<std::size_t>(id)].touches_border) continue;
+        if (id < 0 || fragments[static_cast<std::size_t>(id)].touches_border) continue;
         for (int k = 0; k < 8; k += 2) {
           const int qx = x + kDx[k], qy = y + kDy[k];
           if (qx >= 0 && qy >= 0 && qx < w && qy < h && !mask.inside(static_cast<std::int64_t>(qy) * w + qx)) {
-            graph.fragments[static_cast<std::size_t>(id)].touches_border = true;
+            fragments[static_cast<std::size_t>(id)].touches_border = true;
           }
         }
       }
   }
-  if (options.assign_crack_pixels && !graph.fragments.empty()) {
+  if (options.assign_crack_pixels && !fragments.empty()) {
     // Crack pixels go to the nearest fragment, found by a breadth-first flood from the
     // fragments' edges across the strokes (4-neighbour steps, neighbours in a fixed order, so
     // ties resolve the same way every time). Memory: one queue of crack pixels, no distance map.
@@ -548,7 +560,7 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
     std::vector<std::size_t> queue;
     auto claim = [&](std::size_t i, int from) {
       label[i] = from;
-      graph.fragments[static_cast<std::size_t>(fragment_of[static_cast<std::size_t>(from)])].area += 1.0;
+      fragments[static_cast<std::size_t>(fragment_of[static_cast<std::size_t>(from)])].area += 1.0;
       queue.push_back(i);
     };
     const int step[4] = {-w, 1, w, -1};
@@ -583,6 +595,8 @@ PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOpti
       (*labels_out)[i] = l > 0 ? fragment_of[static_cast<std::size_t>(l)] : -1;
     }
   }
+  for (Fragment& f : fragments) builder.add_fragment(std::move(f));
+  PlanarCrackGraph graph = std::move(builder).build();
   if (skeleton_out) *skeleton_out = std::move(skel);
   if (diagnostics_out) *diagnostics_out = diag;
   return graph;
