@@ -46,6 +46,8 @@ int on_error(TIFF*, void* user_data, const char* module, const char* format, va_
     char text[512];
     std::vsnprintf(text, sizeof text, format, arguments);
     context->error = text;
+    for (char& c : context->error)
+      if (c == '\n' || c == '\r') c = ' ';  // one line, whatever libtiff's format holds
   }
   return 1;  // handled: libtiff's global handler (stderr) is not called
 }
