@@ -60,7 +60,8 @@ TEST(ImageDecoding, BytesAfterTheEndMarkerAreIgnored) {
     const std::string bytes = encode(drawing(), extension, {cv::IMWRITE_JPEG_QUALITY, 95});
     const fs::path plain = dir / (std::string("plain") + extension), trailer = dir / (std::string("trailer") + extension);
     write_file_atomically(plain, bytes);
-    write_file_atomically(trailer, bytes + std::string("\0\0\0\0editor trailer, 40 bytes of metadata....", 48));
+    static constexpr char kTrailer[] = "\0\0\0\0editor trailer: metadata after the end marker";
+    write_file_atomically(trailer, bytes + std::string(kTrailer, sizeof kTrailer - 1));
     test::StderrCapture capture;
     const std::string a = stats_of(plain), b = stats_of(trailer);
     EXPECT_EQ(capture.finish(), "");
