@@ -1,10 +1,10 @@
 #include "fissure/exemplar/crack_image.hpp"
 
+#include "image_codecs.hpp"
+
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include "fissure/base/number_text.hpp"
 
 #include <algorithm>
 #include <array>
@@ -49,70 +49,6 @@ int otsu_threshold(const std::vector<std::uint8_t>& pixels) {
   return level;
 }
 
-GreyImage to_grey(const cv::Mat& image) {
-  cv::Mat grey;
-  if (image.channels() == 1) {
-    grey = image;
-  } else if (image.channels() == 4) {
-    cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
-  } else {
-    cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
-  }
-  if (grey.depth() != CV_8U) {
-    double lo = 0, hi = 0;
-    cv::minMaxLoc(grey, &lo, &hi);
-    cv::Mat scaled;
-    grey.convertTo(scaled, CV_8U, hi > lo ? 255.0 / (hi - lo) : 1.0, hi > lo ? -lo * 255.0 / (hi - lo) : 0.0);
-    grey = scaled;
-  }
-  GreyImage out;
-  out.width = grey.cols;
-  out.height = grey.rows;
-  out.pixels.resize(static_cast<std::size_t>(grey.total()));
-  for (int y = 0; y < grey.rows; ++y) std::memcpy(out.pixels.data() + static_cast<std::size_t>(y) * grey.cols, grey.ptr(y), grey.cols);
-  return out;
-}
-
-cv::Mat decode(const fs::path& path, const CrackImageOptions& options, int flags) {
-  const std::string name = path.string();
-  const auto [w, h] = image_size_from_header(path);
-  if (w >= 0) {
-    const std::int64_t pixels = static_cast<std::int64_t>(w) * h;
-    if (pixels > options.max_pixels) {
-      throw InvalidInput(name + ": image is " + std::to_string(w) + " x " + std::to_string(h) + " = " +
-                         std::to_string(pixels / 1'000'000) + " megapixels, above the limit of " +
-                         std::to_string(options.max_pixels / 1'000'000) +
-                         " megapixels (raise it with --max-megapixels)");
-    }
-  }
-  // A PNG must end with its IEND chunk and a JPEG with the EOI marker: checking first gives a
-  // clear message for a truncated file (libpng would print its own error to the terminal).
-  {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    const auto size = static_cast<std::streamoff>(in.tellg());
-    unsigned char head[4] = {}, tail[12] = {};
-    in.seekg(0);
-    in.read(reinterpret_cast<char*>(head), 4);
-    if (size >= 12) {
-      in.seekg(size - 12);
-      in.read(reinterpret_cast<char*>(tail), 12);
-    }
-    const bool png = head[0] == 0x89 && head[1] == 'P' && head[2] == 'N' && head[3] == 'G';
-    const bool jpeg = head[0] == 0xFF && head[1] == 0xD8;
-    if ((png && std::memcmp(tail + 4, "IEND", 4) != 0) || (jpeg && !(tail[10] == 0xFF && tail[11] == 0xD9))) {
-      throw IoError(name + ": the image file is truncated");
-    }
-  }
-  cv::Mat image;
-  try {
-    image = cv::imread(name, flags);
-  } catch (const cv::Exception& e) {
-    throw IoError(name + ": cannot decode the image: " + e.what());
-  }
-  if (image.empty()) throw IoError(name + ": cannot decode the image (corrupt, truncated or not PNG/JPEG/TIFF/BMP)");
-  return image;
-}
-
 }  // namespace
 
 std::pair<int, int> image_size_from_header(const fs::path& path) {
@@ -126,9 +62,11 @@ std::pair<int, int> image_size_from_header(const fs::path& path) {
     return {static_cast<int>(big_endian_32(&head[16])), static_cast<int>(big_endian_32(&head[20]))};
   }
   if (n >= 26 && head[0] == 'B' && head[1] == 'M') {
-    const int w = static_cast<int>(little_endian_32(&head[18]));
-    const int h = static_cast<int>(little_endian_32(&head[22]));
-    return {std::abs(w), std::abs(h)};
+    // Signed (a negative height is a top-down bitmap); INT32_MIN has no absolute value in int.
+    const std::int64_t w = static_cast<std::int32_t>(little_endian_32(&head[18]));
+    const std::int64_t h = static_cast<std::int32_t>(little_endian_32(&head[22]));
+    auto side = [](std::int64_t v) { return static_cast<int>(std::min<std::int64_t>(v < 0 ? -v : v, INT32_MAX)); };
+    return {side(w), side(h)};
   }
   if (n >= 4 && head[0] == 0xFF && head[1] == 0xD8) {
     // Walk the JPEG markers to the first start-of-frame.
@@ -164,7 +102,84 @@ std::pair<int, int> image_size_from_header(const fs::path& path) {
   return {-1, -1};
 }
 
+std::vector<std::string> GreyImage::problems() const {
+  std::vector<std::string> out;
+  if (width < 0 || height < 0) out.push_back("size " + std::to_string(width) + " x " + std::to_string(height) + " is negative");
+  const std::int64_t expected = static_cast<std::int64_t>(std::max(width, 0)) * std::max(height, 0);
+  if (static_cast<std::int64_t>(pixels.size()) != expected) {
+    out.push_back("holds " + std::to_string(pixels.size()) + " pixels, not " + std::to_string(width) + " x " +
+                  std::to_string(height) + " = " + std::to_string(expected));
+  }
+  return out;
+}
+
+std::vector<std::string> CrackImageOptions::problems() const {
+  std::vector<std::string> out;
+  if (polarity != CrackPolarity::Auto && polarity != CrackPolarity::LightOnDark && polarity != CrackPolarity::DarkOnLight) {
+    out.push_back("polarity " + std::to_string(static_cast<int>(polarity)) + " is not auto, light or dark");
+  }
+  if (threshold < -1 || threshold > 255) {
+    out.push_back("threshold " + std::to_string(threshold) + " is outside [0, 255] (or -1 for Otsu's method)");
+  }
+  if (max_pixels <= 0) out.push_back("max_pixels " + std::to_string(max_pixels) + " is not positive");
+  return out;
+}
+
+void CrackImageOptions::validate() const { throw_if_problems("crack image options", problems()); }
+
+namespace detail {
+
+ImageFormat sniff_image_format(std::string_view b) {
+  auto starts = [&](std::string_view signature) { return b.substr(0, signature.size()) == signature; };
+  if (starts("\x89PNG\r\n\x1a\n")) return ImageFormat::Png;
+  if (starts("\xFF\xD8\xFF")) return ImageFormat::Jpeg;
+  if (starts(std::string_view("II*\0", 4)) || starts(std::string_view("MM\0*", 4))) return ImageFormat::Tiff;
+  if (starts("BM")) return ImageFormat::Bmp;
+  return ImageFormat::Unknown;
+}
+
+void check_image_size(const std::string& name, std::int64_t width, std::int64_t height, std::int64_t max_pixels) {
+  if (width <= 0 || height <= 0) {
+    throw IoError(name + ": cannot decode the image: its header gives a size of " + std::to_string(width) + " x " +
+                  std::to_string(height));
+  }
+  const std::int64_t pixels = width * height;
+  if (pixels > max_pixels) {
+    throw InvalidInput(name + ": image is " + std::to_string(width) + " x " + std::to_string(height) + " = " +
+                       format_number(static_cast<double>(pixels) / 1e6, 3) + " megapixels, above the limit of " +
+                       format_number(static_cast<double>(max_pixels) / 1e6, 3) + " megapixels");
+  }
+}
+
+}  // namespace detail
+
+GreyImage load_grey_image(const fs::path& path, std::int64_t max_pixels) {
+  const std::string name = path.string();
+  if (max_pixels <= 0) throw InvalidInput(name + ": the pixel limit " + std::to_string(max_pixels) + " is not positive");
+  // The header first, so that a huge image is refused before its file is even read.
+  const auto [w, h] = image_size_from_header(path);
+  if (w > 0 && h > 0) detail::check_image_size(name, w, h, max_pixels);
+  const std::string bytes = read_file(path);
+  detail::DecodedImage decoded;
+  switch (detail::sniff_image_format(bytes)) {
+    case detail::ImageFormat::Png: decoded = detail::decode_png(bytes, name, max_pixels); break;
+    case detail::ImageFormat::Jpeg: decoded = detail::decode_jpeg(bytes, name, max_pixels); break;
+    case detail::ImageFormat::Tiff: decoded = detail::decode_tiff(bytes, name, max_pixels); break;
+    case detail::ImageFormat::Bmp: decoded = detail::decode_bmp(bytes, name, max_pixels); break;
+    case detail::ImageFormat::Unknown: throw IoError(name + ": cannot decode the image: not a PNG, JPEG, TIFF or BMP file");
+  }
+  GreyImage image;
+  image.width = decoded.width;
+  image.height = decoded.height;
+  const auto [lo, hi] = std::minmax_element(decoded.alpha.begin(), decoded.alpha.end());
+  const bool alpha_carries_drawing = !decoded.alpha.empty() && *lo != *hi;
+  image.pixels = alpha_carries_drawing ? std::move(decoded.alpha) : std::move(decoded.grey);
+  return image;
+}
+
 CrackMask crack_mask_from_grey(const GreyImage& image, const CrackImageOptions& options, const std::string& name) {
+  options.validate();
+  throw_if_problems(name + ": image", image.problems());
   if (image.width < kMinImageSide || image.height < kMinImageSide) {
     throw InvalidInput(name + ": image is " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                        ", smaller than the " + std::to_string(kMinImageSide) + " x " + std::to_string(kMinImageSide) +
@@ -199,24 +214,21 @@ CrackMask crack_mask_from_grey(const GreyImage& image, const CrackImageOptions& 
 }
 
 CrackMask load_crack_mask(const fs::path& path, const CrackImageOptions& options) {
-  // Decoded straight to 8-bit grey: a colour copy of a 4096² tracing would cost 50 MB.
-  const cv::Mat image = decode(path, options, cv::IMREAD_GRAYSCALE);
-  CrackMask mask = crack_mask_from_grey(to_grey(image), options, path.string());
+  options.validate();
+  CrackMask mask = crack_mask_from_grey(load_grey_image(path, options.max_pixels), options, path.string());
   if (!options.roi_path.empty()) {
-    const cv::Mat roi = decode(options.roi_path, options, cv::IMREAD_GRAYSCALE);
-    if (roi.cols != mask.width || roi.rows != mask.height) {
-      throw InvalidInput(options.roi_path.string() + ": region-of-interest mask is " + std::to_string(roi.cols) + " x " +
-                         std::to_string(roi.rows) + ", the image " + path.string() + " is " + std::to_string(mask.width) +
+    const GreyImage roi = load_grey_image(options.roi_path, options.max_pixels);
+    if (roi.width != mask.width || roi.height != mask.height) {
+      throw InvalidInput(options.roi_path.string() + ": region-of-interest mask is " + std::to_string(roi.width) + " x " +
+                         std::to_string(roi.height) + ", the image " + path.string() + " is " + std::to_string(mask.width) +
                          " x " + std::to_string(mask.height));
     }
     mask.roi.resize(mask.crack.size());
     std::size_t inside = 0;
-    for (int y = 0; y < roi.rows; ++y)
-      for (int x = 0; x < roi.cols; ++x) {
-        const std::size_t i = static_cast<std::size_t>(y) * mask.width + x;
-        mask.roi[i] = roi.at<std::uint8_t>(y, x) != 0;
-        inside += mask.roi[i];
-      }
+    for (std::size_t i = 0; i < roi.pixels.size(); ++i) {
+      mask.roi[i] = roi.pixels[i] != 0;
+      inside += mask.roi[i];
+    }
     if (inside == 0) throw InvalidInput(options.roi_path.string() + ": region-of-interest mask is empty");
   }
   return mask;

@@ -4,7 +4,8 @@
 #include "fissure/base/error.hpp"
 #include "fissure/base/rng.hpp"
 
-#include <opencv2/imgcodecs.hpp>
+#include "image_codecs.hpp"
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -13,6 +14,28 @@ namespace fissure {
 
 void write_overlay(const std::filesystem::path& path, const ExemplarAnalysis& a, int min_side) {
   const CrackMask& m = a.mask;
+  // The analysis is plain data a caller can assemble: check that its layers fit one another.
+  a.graph.validate();
+  const std::size_t n = m.crack.size();
+  const auto fits = [n](std::size_t size) { return size == 0 || size == n; };
+  if (m.width < 1 || m.height < 1 || n != static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height) ||
+      !fits(m.roi.size()) || !fits(a.skeleton.size()) || !fits(a.fragment_labels.size())) {
+    throw InvalidInput(path.string() + ": cannot draw the overlay: the analysis' pixel layers do not match its " +
+                       std::to_string(m.width) + " x " + std::to_string(m.height) + " mask");
+  }
+  for (const JunctionStat& j : a.stats.junctions) {
+    if (j.node < 0 || static_cast<std::size_t>(j.node) >= a.graph.nodes.size()) {
+      throw InvalidInput(path.string() + ": cannot draw the overlay: a junction names node " + std::to_string(j.node) +
+                         " of a graph of " + std::to_string(a.graph.nodes.size()));
+    }
+  }
+  for (const std::int32_t label : a.fragment_labels) {
+    if (label < -1 || label >= static_cast<std::int32_t>(a.graph.fragments.size())) {
+      throw InvalidInput(path.string() + ": cannot draw the overlay: a pixel names fragment " + std::to_string(label) +
+                         " of " + std::to_string(a.graph.fragments.size()));
+    }
+  }
+  if (min_side < 1) throw InvalidInput(path.string() + ": overlay side " + std::to_string(min_side) + " is not positive");
   const int scale = std::max(1, (min_side + std::min(m.width, m.height) - 1) / std::min(m.width, m.height));
   // Base layer at image resolution: fragments in pastel colours (seeded: the same picture every
   // time), crack pixels grey, outside the ROI dark, skeleton black.
@@ -60,15 +83,18 @@ void write_overlay(const std::filesystem::path& path, const ExemplarAnalysis& a,
     cv::circle(picture, to_px(node.position), radius, colour, cv::FILLED, cv::LINE_AA);
     cv::circle(picture, to_px(node.position), radius, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  write_atomically(path, [&](const std::filesystem::path& temp) {
-    bool ok = false;
-    try {
-      ok = cv::imwrite(temp.string(), picture);
-    } catch (const cv::Exception& e) {
-      throw IoError(path.string() + ": cannot write the overlay: " + e.what());
+  // Encoded with libpng (BGR → RGB): the exemplar module needs no OpenCV codec library.
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(picture.cols) * picture.rows * 3);
+  for (int y = 0; y < picture.rows; ++y) {
+    const cv::Vec3b* row = picture.ptr<cv::Vec3b>(y);
+    std::uint8_t* out = rgb.data() + static_cast<std::size_t>(y) * picture.cols * 3;
+    for (int x = 0; x < picture.cols; ++x) {
+      out[3 * x] = row[x][2];
+      out[3 * x + 1] = row[x][1];
+      out[3 * x + 2] = row[x][0];
     }
-    if (!ok) throw IoError(path.string() + ": cannot write the overlay (use a .png name)");
-  });
+  }
+  write_file_atomically(path, detail::encode_png_rgb(rgb, picture.cols, picture.rows, path.string()));
 }
 
 }  // namespace fissure

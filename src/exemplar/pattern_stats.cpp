@@ -1,6 +1,7 @@
 #include "fissure/exemplar/pattern_stats.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -25,6 +26,25 @@ Eigen::Vector2d point_along(const std::vector<Eigen::Vector2d>& points, double d
 
 }  // namespace
 
+std::vector<std::string> PatternStatsOptions::problems() const {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : {std::pair{"probe_near_factor", probe_near_factor}, std::pair{"probe_far_factor", probe_far_factor},
+                                    std::pair{"probe_min", probe_min}}) {
+    if (!std::isfinite(value) || value < 0.0) out.push_back(std::string(name) + " " + format_number(value) + " is negative or not finite");
+  }
+  if (!(t_gap_deg > 0.0 && t_gap_deg <= 360.0)) out.push_back("t_gap_deg " + format_number(t_gap_deg) + " is outside (0, 360]");
+  if (density_windows < 1 || density_windows > kMaxDensityWindows) {
+    out.push_back("density_windows " + std::to_string(density_windows) + " is outside [1, " + std::to_string(kMaxDensityWindows) + "]");
+  }
+  if (!std::isfinite(directional_min_deg) || !std::isfinite(directional_max_deg) || directional_min_deg > directional_max_deg) {
+    out.push_back("directional range [" + format_number(directional_min_deg) + ", " + format_number(directional_max_deg) +
+                  "] deg is not finite with min <= max");
+  }
+  return out;
+}
+
+void PatternStatsOptions::validate() const { throw_if_problems("pattern statistics options", problems()); }
+
 RelaxationMode relaxation_mode_for(double mean_angle, const PatternStatsOptions& options) {
   return mean_angle >= options.directional_min_deg && mean_angle <= options.directional_max_deg
              ? RelaxationMode::Directional
@@ -45,10 +65,8 @@ const char* to_string(JunctionType type) {
 }
 
 PatternStats compute_pattern_stats(const PlanarCrackGraph& graph, const PatternStatsOptions& options) {
-  if (!(graph.total_area > 0.0)) {
-    throw InvalidInput((graph.source.empty() ? std::string("crack graph") : graph.source) +
-                       ": the fractured area is not positive");
-  }
+  options.validate();
+  graph.validate();
   PatternStats s;
   s.source = graph.source;
   s.total_area = graph.total_area;
@@ -99,7 +117,7 @@ PatternStats compute_pattern_stats(const PlanarCrackGraph& graph, const PatternS
   }
   const Eigen::Vector2d frame_size = graph.frame_max - graph.frame_min;
   const double frame_area = frame_size.x() * frame_size.y();
-  const int k = std::max(1, options.density_windows);
+  const int k = options.density_windows;
   std::vector<int> window_counts(static_cast<std::size_t>(k * k), 0);
   s.junction_angle_hist = Histogram::make(0.0, 360.0, 36);
   double angle_sum = 0.0, angle_sum_degree3 = 0.0;

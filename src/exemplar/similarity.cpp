@@ -1,6 +1,7 @@
 #include "fissure/exemplar/similarity.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <cmath>
 
@@ -10,7 +11,7 @@ std::vector<std::string> SimilarityWeights::problems() const {
   std::vector<std::string> out;
   for (const auto& [name, value] : {std::pair{"fragment weight", fragment}, std::pair{"crack weight", crack},
                                     std::pair{"junction weight", junction}}) {
-    if (!std::isfinite(value) || value < 0.0) out.push_back(std::string(name) + " " + std::to_string(value) + " is negative or not finite");
+    if (!std::isfinite(value) || value < 0.0) out.push_back(std::string(name) + " " + format_number(value) + " is negative or not finite");
   }
   if (out.empty() && fragment + crack + junction <= 0.0) out.push_back("all similarity weights are zero");
   return out;

@@ -7,6 +7,7 @@
 #include "fissure/exemplar/planar_crack_graph.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace fissure {
@@ -35,7 +36,18 @@ struct CrackGraphOptions {
   /// the first segment at a junction (which tilted measured T junctions by 2°).
   int smoothing_points = 2;
   double simplify_px = 0.25;
+
+  /// Readable problems, each naming the field: a factor or length that is negative or not finite
+  /// (NaN compares false with every bound, so it would silently prune nothing or everything), a
+  /// negative pixel count, more than kMaxSmoothingPoints smoothing points. Empty when valid.
+  std::vector<std::string> problems() const;
+  /// Throws InvalidInput "crack graph options: <problems>" when problems() is not empty.
+  void validate() const;
 };
+
+/// Upper bound of CrackGraphOptions::smoothing_points: the moving average costs
+/// (2·smoothing_points + 1) a chain point, and beyond a few pixels it bends real cracks.
+constexpr int kMaxSmoothingPoints = 1000;
 
 struct CrackGraphDiagnostics {
   double crack_width_px = 0.0;
@@ -55,7 +67,8 @@ struct CrackGraphDiagnostics {
 };
 
 /// Builds the crack graph of `mask` in pixel units (x right, y down, pixel centres at integers).
-/// `skeleton`, when given, receives the thinned mask (for overlays). O(pixels).
+/// `skeleton`, when given, receives the thinned mask (for overlays). Throws InvalidInput for
+/// invalid `options` or a mask whose layers do not match its size. O(pixels).
 PlanarCrackGraph extract_crack_graph(const CrackMask& mask, const CrackGraphOptions& options = {},
                                      CrackGraphDiagnostics* diagnostics = nullptr,
                                      std::vector<std::uint8_t>* skeleton = nullptr,

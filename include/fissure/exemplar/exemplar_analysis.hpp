@@ -17,6 +17,11 @@ struct ExemplarAnalysisOptions {
   PatternStatsOptions stats;
   /// Keep the skeleton and the per-pixel fragment labels (for overlays): 5 bytes a pixel.
   bool keep_pixel_layers = false;
+
+  /// The problems of the three option sets, each prefixed by its set's name.
+  std::vector<std::string> problems() const;
+  /// Throws InvalidInput "exemplar analysis options: <problems>" before any work.
+  void validate() const;
 };
 
 struct ExemplarAnalysis {
@@ -28,7 +33,7 @@ struct ExemplarAnalysis {
   std::vector<std::int32_t> fragment_labels;  ///< per pixel: fragment index or −1, when keep_pixel_layers
 };
 
-/// Analyses a tracing file (errors as load_crack_mask). For a pixel-unit graph the junction probe
+/// Analyses a tracing file (errors as load_crack_mask; invalid options are refused first). For a pixel-unit graph the junction probe
 /// floor is the reference's 8 px.
 ExemplarAnalysis analyze_exemplar(const std::filesystem::path& path, const ExemplarAnalysisOptions& options = {});
 

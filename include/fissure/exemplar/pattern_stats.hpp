@@ -52,7 +52,17 @@ struct PatternStatsOptions {
   /// unknown). Off by default, as in the shared reference statistics: on small exemplars most
   /// fragments touch the frame.
   bool exclude_border_fragments = false;
+
+  /// Readable problems, each naming the field (negative or non-finite probe lengths, a T gap
+  /// outside (0, 360], a window count outside [1, kMaxDensityWindows], a directional range that
+  /// is not finite or has min > max). Empty when valid.
+  std::vector<std::string> problems() const;
+  /// Throws InvalidInput "pattern statistics options: <problems>" when problems() is not empty.
+  void validate() const;
 };
+
+/// Upper bound of PatternStatsOptions::density_windows: k² counters are allocated.
+constexpr int kMaxDensityWindows = 1000;
 
 /// Normalised statistics. Areas are divided by the total fractured area A, lengths by √A; the
 /// junction density is the count per unit normalised area (so equal to the count); histograms
@@ -91,8 +101,9 @@ struct PatternStats {
   RelaxationMode relaxation_mode = RelaxationMode::Isotropic;
 };
 
-/// Computes the statistics of a planar crack graph. Throws InvalidInput when the total area is
-/// not positive. O(points + junctions).
+/// Computes the statistics of a planar crack graph. Throws InvalidInput when the graph is
+/// inconsistent (PlanarCrackGraph::validate, naming its source) or `options` are invalid.
+/// O(points + junctions).
 PatternStats compute_pattern_stats(const PlanarCrackGraph& graph, const PatternStatsOptions& options = {});
 
 /// The relaxation mode a mean junction angle selects (Eq. 3 in [min, max], else Eq. 4).

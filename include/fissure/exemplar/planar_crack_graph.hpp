@@ -54,6 +54,47 @@ struct PlanarCrackGraph {
   /// Typical crack width in graph units (0 when unknown); sets the junction-angle probe.
   double crack_width = 0.0;
   std::string source;
+
+  /// Readable problems, empty when the graph is consistent: a positive finite total area; a
+  /// frame with frame_max > frame_min, finite; a finite crack width ≥ 0; nodes at finite
+  /// positions, each touched by a crack, whose degree is the number of crack ends at it and whose
+  /// kind is Junction exactly when the degree is ≥ 3; cracks of ≥ 2 finite points whose node
+  /// indices are both in range (or both −1 for a closed crack)
+  /// and whose end points are their nodes' positions; fragments of positive finite area and
+  /// finite centroid and outline, together no larger than the total area. Entities are named by
+  /// their index ("cracks[3]"). O(nodes + points + fragments).
+  std::vector<std::string> problems() const;
+  /// Throws InvalidInput "<source>: <problem>" (the first problems) when problems() is not empty.
+  /// Called at the entry of every function that consumes a graph.
+  void validate() const;
+};
+
+/// Builds a consistent PlanarCrackGraph (what a simulation's crack extraction will use): the
+/// caller adds nodes and cracks, the builder derives each node's degree and kind from the cracks
+/// (degree ≥ 3: Junction; else Border when the node was added as on the border, else End), drops
+/// nodes no crack touches (renumbering the rest in order), snaps each crack's end points to its
+/// nodes' positions and validates the result. Node indices passed to add_crack are the ones
+/// add_node returned.
+class PlanarCrackGraphBuilder {
+public:
+  /// The frame (min and max corner) and the total fractured area, in graph units; `source` names
+  /// the pattern in messages.
+  PlanarCrackGraphBuilder(const Eigen::Vector2d& frame_min, const Eigen::Vector2d& frame_max, double total_area,
+                          std::string source);
+  /// A node where cracks end or meet; `on_border` = it lies on the edge of the fractured area.
+  int add_node(const Eigen::Vector2d& position, bool on_border = false);
+  /// A crack from node `start` to node `end` (equal for a loop through one node), or a closed
+  /// crack meeting nothing when both are −1.
+  void add_crack(std::vector<Eigen::Vector2d> points, int start, int end);
+  void add_fragment(Fragment fragment);
+  void set_crack_width(double width);
+  /// The graph; throws InvalidInput naming the source and the first problems (a crack naming a
+  /// node that was never added, a non-finite point, a fragment of no area, …).
+  PlanarCrackGraph build() &&;
+
+private:
+  PlanarCrackGraph m_graph;
+  std::vector<char> m_on_border;
 };
 
 /// Signed area of a closed polygon (shoelace), positive counter-clockwise.
