@@ -139,7 +139,7 @@ void BM_StressAndMaxPrincipal(benchmark::State& state) {
   StressField stress;
   Eigen::VectorXd smax;
   for (auto _ : state) {
-    compute_stress_and_max_principal(*mesh, body->gradients(), body->material(), u, stress, smax);
+    compute_stress_and_max_principal(*body, u, stress, smax);
     benchmark::DoNotOptimize(smax.data());
   }
   set_size_counters(state, *mesh);
@@ -163,7 +163,7 @@ void BM_StressRecoveryApply(benchmark::State& state) {
   const auto mesh = bench::tile(static_cast<int>(state.range(0)));
   auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
   const Eigen::VectorXd u = bench::centre_patch_displacement(body);
-  const StressField stress = compute_stress(*mesh, body->gradients(), body->material(), u);
+  const StressField stress = compute_stress(*body, u);
   const StressRecovery recovery(*mesh);
   for (auto _ : state) {
     StressField smoothed = recovery.smoothed_tets(stress);
@@ -177,7 +177,7 @@ void BM_StressEigenPerElement(benchmark::State& state) {
   const auto mesh = bench::tile(static_cast<int>(state.range(0)));
   auto body = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{});
   const Eigen::VectorXd u = bench::centre_patch_displacement(body);
-  const StressField stress = compute_stress(*mesh, body->gradients(), body->material(), u);
+  const StressField stress = compute_stress(*body, u);
   Eigen::VectorXd smax(mesh->tet_count());
   for (auto _ : state) {
     for (int t = 0; t < mesh->tet_count(); ++t) smax[t] = principal_stresses(stress.row(t).transpose()).values[0];
