@@ -96,6 +96,12 @@ StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
   int exponent = 0;
   if (peak > 0.0) std::frexp(peak, &exponent);
   const Eigen::VectorXd scaled = peak > 0.0 ? Eigen::VectorXd(f * std::ldexp(1.0, -exponent)) : f;
+  auto refuse_overflow = [&](const Eigen::VectorXd& u) {
+    if (u.allFinite()) return;
+    throw NumericalFailure("static solve: the displacement overflows double precision on " + first_non_finite(mesh, u) +
+                           " (largest load " + format_number(peak) + " N, E = " +
+                           format_number(m_body->material().youngs_modulus) + " Pa): the load is too large for the stiffness");
+  };
 
   StaticSolution out;
   Eigen::VectorXd load = scaled;  // the balanced load, scaled
@@ -118,11 +124,7 @@ StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
       return m_reduced_stiffness * u_free - load_free;
     };
     u = m_dofs.expand_vector(u_free);
-    if (!u.allFinite()) {
-      throw NumericalFailure("static solve: the displacement overflows double precision on " + first_non_finite(mesh, u) +
-                             " (largest load " + format_number(peak) + " N, E = " +
-                             format_number(m_body->material().youngs_modulus) + " Pa): the load is too large for the stiffness");
-    }
+    refuse_overflow(u);
     Eigen::VectorXd residual = residual_of(u);
     out.relative_residual = residual.norm() / load_norm;
     while (out.relative_residual > m_options.target_residual &&
@@ -162,11 +164,7 @@ StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
   out.support_reaction *= unscale;
   out.balanced_load = load * unscale;
   u *= unscale;
-  if (!u.allFinite()) {
-    throw NumericalFailure("static solve: the displacement overflows double precision on " + first_non_finite(mesh, u) +
-                           " (largest load " + format_number(peak) + " N, E = " +
-                           format_number(m_body->material().youngs_modulus) + " Pa): the load is too large for the stiffness");
-  }
+  refuse_overflow(u);
   out.displacement = std::move(u);
   return out;
 }

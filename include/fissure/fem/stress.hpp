@@ -42,13 +42,14 @@ PrincipalStresses principal_stresses(const Eigen::Matrix<double, 6, 1>& voigt);
 /// adjugate), normalised, its largest component made positive (a direction is an axis: ±v are
 /// the same; the sign rule makes the output deterministic). Guarantees, with g = λ₁ − λ₂ the gap
 /// to the second eigenvalue (tested against Eigen):
-///  - always a unit vector (to 1e-15) with residual ‖σv − λv‖ ≤ 1e-7·‖σ‖ — whatever the gap, v
-///    is an eigenvector of λ to within the accuracy of λ itself;
-///  - for g ≥ 1e-6·‖σ‖, the angle to the true eigenvector is ≤ 1e-15·‖σ‖/g rad... times a small
-///    constant (tested at 4e-15·‖σ‖/g), the eigenvector's own condition number;
+///  - always a unit vector (to 1e-15) with residual ‖σv − λv‖ ≤ 1e-7·‖σ‖ whatever the gap (v is
+///    an eigenvector of λ to within the accuracy of λ itself; ≤ 1e-13·‖σ‖ for a simple λ);
+///  - for g ≥ 1e-6·‖σ‖, an angle to the true eigenvector ≤ 2e-13·‖σ‖/g: round-off times the
+///    eigenvector's own condition number ‖σ‖/g, which no method avoids;
 ///  - for a (near-)repeated largest eigenvalue (g ≲ √ε·‖σ‖) the direction is not defined: v is
-///    then some unit vector of the (near-)eigenspace of λ₁ and λ₂ (the residual bound above
-///    holds), chosen deterministically; for an isotropic tensor it is (1, 0, 0).
+///    then a unit vector of the (near-)eigenspace of λ₁ and λ₂ (its component along the third
+///    eigenvector is ≤ residual/(λ₁ − λ₃)), chosen deterministically; for an isotropic tensor it
+///    is (1, 0, 0).
 struct MaxPrincipal {
   double value = 0.0;
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
@@ -65,13 +66,13 @@ struct PrincipalStressField {
 };
 
 /// The fused kernel of the stress map: stress, λ_max and its direction of every tet of `body`
-/// in one vectorised pass over structure-of-arrays data (≈ 0.3 ms at 24K tets on one core,
-/// BENCHMARKS.md). `out` is resized (its memory is reused across calls of the same size).
+/// in one vectorised pass over structure-of-arrays data (0.34 ms CPU for the 21.5K-tet tile on
+/// one core, bench_fem; Eigen per element: 8.3 ms). `out` is resized (its memory is reused across calls of the same size).
 /// Throws InvalidInput as compute_stress, NumericalFailure when a stress overflows double
 /// precision (naming the tet). Thread-safe.
 void compute_principal_stress(const ElasticBody& body, const Eigen::VectorXd& u, PrincipalStressField& out);
 
-/// The same without directions (stress and λ_max only), ≈ 30 % cheaper.
+/// The same without directions (stress and λ_max only), ≈ 20 % cheaper.
 void compute_stress_and_max_principal(const ElasticBody& body, const Eigen::VectorXd& u, StressField& stress,
                                       Eigen::VectorXd& max_principal);
 
