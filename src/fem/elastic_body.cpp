@@ -12,19 +12,20 @@ ElasticBody::ElasticBody(std::shared_ptr<const TetMesh> mesh, const ElasticMater
 }
 
 const SparseMatrixD& ElasticBody::mass_matrix(MassKind kind) const {
+  MassCache& cache = *m_mass_cache;
   if (kind == MassKind::Consistent) {
-    if (m_consistent_mass.nonZeros() == 0) {
-      m_consistent_mass = consistent_mass(*m_mesh, m_material.density, *m_pattern);
-    }
-    return m_consistent_mass;
+    std::call_once(cache.consistent_made,
+                   [&] { cache.consistent = consistent_mass(*m_mesh, m_material.density, *m_pattern); });
+    return cache.consistent;
   }
-  if (m_lumped_matrix.nonZeros() == 0) {
-    m_lumped_matrix.resize(m_lumped_mass.size(), m_lumped_mass.size());
-    m_lumped_matrix.reserve(Eigen::VectorXi::Ones(m_lumped_mass.size()));
-    for (Eigen::Index i = 0; i < m_lumped_mass.size(); ++i) m_lumped_matrix.insert(i, i) = m_lumped_mass[i];
-    m_lumped_matrix.makeCompressed();
-  }
-  return m_lumped_matrix;
+  std::call_once(cache.lumped_made, [&] {
+    const Eigen::Index n = m_lumped_mass.size();
+    cache.lumped.resize(n, n);
+    cache.lumped.reserve(Eigen::VectorXi::Ones(n));
+    for (Eigen::Index i = 0; i < n; ++i) cache.lumped.insert(i, i) = m_lumped_mass[i];
+    cache.lumped.makeCompressed();
+  });
+  return cache.lumped;
 }
 
 Eigen::VectorXd ElasticBody::mass_times(MassKind kind, const Eigen::VectorXd& x) const {

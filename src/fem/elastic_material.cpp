@@ -1,19 +1,13 @@
 #include "fissure/fem/elastic_material.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 namespace fissure {
 namespace {
-
-std::string format(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
 
 void check(const ParameterInfo& info, double value, std::vector<std::string>& problems) {
   std::string problem = parameter_problem(info, value, info.name);
@@ -25,9 +19,11 @@ void check(const ParameterInfo& info, double value, std::vector<std::string>& pr
 std::string parameter_problem(const ParameterInfo& info, double value, const std::string& label) {
   const bool below = info.min_exclusive ? value <= info.min : value < info.min;
   const bool above = info.max_exclusive ? value >= info.max : value > info.max;
-  if (std::isfinite(value) && !below && !above) return {};
-  return label + " " + format(value) + " is outside " + (info.min_exclusive ? "(" : "[") + format(info.min) +
-         ", " + (std::isinf(info.max) ? "inf" : format(info.max)) + (info.max_exclusive ? ")" : "]") +
+  // A non-finite value is not "outside (0, inf]" (inf is the bound's notation, not a value).
+  if (!std::isfinite(value)) return label + " " + format_number(value) + " is not a finite number";
+  if (!below && !above) return {};
+  return label + " " + format_number(value) + " is outside " + (info.min_exclusive ? "(" : "[") +
+         format_number(info.min) + ", " + format_number(info.max) + (info.max_exclusive ? ")" : "]") +
          (info.unit[0] ? std::string(" ") + info.unit : std::string());
 }
 

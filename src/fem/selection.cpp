@@ -1,49 +1,21 @@
 #include "fissure/fem/selection.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <set>
 
 namespace fissure {
-namespace {
-
-std::vector<double> parse_numbers(std::string_view list, std::string_view spec) {
-  std::vector<double> out;
-  std::size_t pos = 0;
-  while (pos <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', pos), list.size());
-    std::string item(list.substr(pos, comma - pos));
-    item.erase(0, item.find_first_not_of(" \t"));
-    item.erase(item.find_last_not_of(" \t") + 1);
-    double value = 0.0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() ||
-        !std::isfinite(value)) {
-      throw InvalidInput("selection '" + std::string(spec) + "': '" + item + "' is not a finite number");
-    }
-    out.push_back(value);
-    pos = comma + 1;
-  }
-  return out;
-}
-
-}  // namespace
-
 Selection parse_selection(std::string_view spec) {
   Selection s;
   s.spec = std::string(spec);
   if (spec.empty()) throw InvalidInput("selection: empty selection spec");
   if (spec.starts_with("box:")) {
-    const auto v = parse_numbers(spec.substr(4), spec);
-    if (v.size() != 6) {
-      throw InvalidInput("selection '" + s.spec + "': box needs 6 numbers x0,x1,y0,y1,z0,z1, got " +
-                         std::to_string(v.size()));
-    }
+    const auto v = parse_number_list(spec.substr(4), "selection '" + s.spec + "': box", 6, "x0,x1,y0,y1,z0,z1");
     for (int axis = 0; axis < 3; ++axis) {
       if (v[2 * axis] > v[2 * axis + 1]) {
         throw InvalidInput("selection '" + s.spec + "': box bound " + "xyz"[axis] +
@@ -53,17 +25,13 @@ Selection parse_selection(std::string_view spec) {
     s.kind = Selection::Kind::Box;
     for (int i = 0; i < 6; ++i) s.box[i] = v[i];
   } else if (spec.starts_with("ball:")) {
-    const auto v = parse_numbers(spec.substr(5), spec);
-    if (v.size() != 4) {
-      throw InvalidInput("selection '" + s.spec + "': ball needs 4 numbers x,y,z,r, got " +
-                         std::to_string(v.size()));
-    }
+    const auto v = parse_number_list(spec.substr(5), "selection '" + s.spec + "': ball", 4, "x,y,z,r");
     if (v[3] <= 0.0) throw InvalidInput("selection '" + s.spec + "': ball radius must be positive");
     s.kind = Selection::Kind::Ball;
     s.center = Eigen::Vector3d(v[0], v[1], v[2]);
     s.radius = v[3];
   } else {
-    if (spec.find_first_of(":=, \t") != std::string_view::npos) {
+    if (spec.find_first_of(":=,^ \t") != std::string_view::npos) {
       throw InvalidInput("selection '" + s.spec +
                          "': expected box:x0,x1,y0,y1,z0,z1, ball:x,y,z,r or a physical group name");
     }

@@ -79,19 +79,35 @@ struct SparseCholesky::Impl {
     }
   }
 
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) {
+  // Thread-safe: each call works in its own cholmod_common (status, memory counters) and its own
+  // X, Y, E dense blocks, and the supernodal solve only reads the factor (cholmod_solve2 with
+  // sys = CHOLMOD_A on a supernodal L calls super_lsolve/ltsolve, which read L->x and write Y,
+  // E). The shared `common` is never touched, so concurrent solves on one factor do not race
+  // (tested under ThreadSanitizer, docs/architecture.md). cholmod_start only sets defaults, so a
+  // common per call costs nothing against the triangular solves.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const {
+    cholmod_common local{};
+    cholmod_start(&local);
+    local.print = 0;
+    local.error_handler = nullptr;
     cholmod_dense rhs{};
     rhs.nrow = static_cast<std::size_t>(b.rows());
     rhs.ncol = static_cast<std::size_t>(b.cols());
     rhs.nzmax = rhs.nrow * rhs.ncol;
     rhs.d = rhs.nrow;
-    rhs.x = const_cast<double*>(b.data());
+    rhs.x = const_cast<double*>(b.data());  // read only
     rhs.xtype = CHOLMOD_REAL;
     rhs.dtype = CHOLMOD_DOUBLE;
-    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor, &rhs, &common);
-    if (!x) throw NumericalFailure("Cholesky solve failed (CHOLMOD status " + std::to_string(common.status) + ")");
-    Eigen::MatrixXd out = Eigen::Map<const Eigen::MatrixXd>(static_cast<double*>(x->x), b.rows(), b.cols());
-    cholmod_free_dense(&x, &common);
+    cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+    const int ok = cholmod_solve2(CHOLMOD_A, factor, &rhs, nullptr, &x, nullptr, &y, &e, &local);
+    Eigen::MatrixXd out;
+    if (ok && x) out = Eigen::Map<const Eigen::MatrixXd>(static_cast<double*>(x->x), b.rows(), b.cols());
+    const int status = local.status;
+    cholmod_free_dense(&x, &local);
+    cholmod_free_dense(&y, &local);
+    cholmod_free_dense(&e, &local);
+    cholmod_finish(&local);
+    if (!ok) throw NumericalFailure("Cholesky solve failed (CHOLMOD status " + std::to_string(status) + ")");
     return out;
   }
 };
@@ -123,10 +139,20 @@ void SparseCholesky::refactorize(const Eigen::SparseMatrix<double>& a) {
 }
 
 Eigen::VectorXd SparseCholesky::solve(const Eigen::VectorXd& b) const {
+  if (!m_impl->factor || b.rows() != m_impl->n) {
+    throw InvalidInput("Cholesky solve: right-hand side of " + std::to_string(b.rows()) + " rows for a factor of " +
+                       std::to_string(m_impl->n));
+  }
   return m_impl->solve(b).col(0);
 }
 
-Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const { return m_impl->solve(b); }
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const {
+  if (!m_impl->factor || b.rows() != m_impl->n) {
+    throw InvalidInput("Cholesky solve: right-hand side of " + std::to_string(b.rows()) + " rows for a factor of " +
+                       std::to_string(m_impl->n));
+  }
+  return m_impl->solve(b);
+}
 
 int SparseCholesky::rows() const { return m_impl->n; }
 

@@ -1,32 +1,17 @@
 #include "fissure/fem/static_solver.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 #include "fissure/fem/rigid_modes.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace fissure {
-
-Eigen::MatrixXd mass_orthonormal_rigid_modes(const ElasticBody& body, MassKind mass) {
-  const TetMesh& mesh = body.mesh();
-  const int components = mesh.component_count();
-  Eigen::MatrixXd r(3 * static_cast<Eigen::Index>(mesh.node_count()), 6 * components);
-  for (int c = 0; c < components; ++c) r.middleCols(6 * c, 6) = rigid_body_modes(mesh, c);
-  // RᵀMR is block diagonal and SPD (6 independent motions per component): R ← R L⁻ᵀ with
-  // L Lᵀ = RᵀMR gives RᵀMR = I.
-  Eigen::MatrixXd mr(r.rows(), r.cols());
-  for (Eigen::Index j = 0; j < r.cols(); ++j) mr.col(j) = body.mass_times(mass, r.col(j));
-  const Eigen::MatrixXd gram = r.transpose() * mr;
-  const Eigen::LLT<Eigen::MatrixXd> llt(gram);
-  if (llt.info() != Eigen::Success) {
-    throw NumericalFailure("rigid-body modes: the mass matrix is not positive on the rigid motions");
-  }
-  return llt.matrixU().solve<Eigen::OnTheRight>(r);  // R U⁻¹ = R L⁻ᵀ
-}
 
 namespace {
 
@@ -62,12 +47,7 @@ StaticSolver::StaticSolver(std::shared_ptr<const ElasticBody> body, std::vector<
   const TetMesh& mesh = m_body->mesh();
   std::sort(m_fixed_dofs.begin(), m_fixed_dofs.end());
   m_fixed_dofs.erase(std::unique(m_fixed_dofs.begin(), m_fixed_dofs.end()), m_fixed_dofs.end());
-  for (int d : m_fixed_dofs) {
-    if (d < 0 || d >= 3 * mesh.node_count()) {
-      throw InvalidInput("support dof " + std::to_string(d) + " does not exist");
-    }
-  }
-  check_supports_for_mechanisms(mesh, m_fixed_dofs);
+  check_supports_for_mechanisms(mesh, m_fixed_dofs);  // also refuses dofs outside the mesh
 
   if (free_body()) {
     m_rigid_modes = mass_orthonormal_rigid_modes(*m_body, m_options.mass);
@@ -82,74 +62,109 @@ StaticSolver::StaticSolver(std::shared_ptr<const ElasticBody> body, std::vector<
     const int column = m_factor.failed_column();
     if (column < 0) throw;
     const int dof = m_dofs.free_dofs()[static_cast<std::size_t>(column)];
-    throw NumericalFailure(std::string(e.what()) + "; it is dof " + "xyz"[dof % 3] + " of node " + std::to_string(dof / 3) +
+    throw NumericalFailure(std::string(e.what()) + "; it is dof " + "xyz"[dof % 3] + " of " + mesh.node_label(dof / 3) +
                            (mesh.source_name().empty() ? std::string() : " of " + mesh.source_name()));
   }
 }
 
+namespace {
+
+// The first non-finite entry of a nodal vector as "node 12 (y)", for messages.
+std::string first_non_finite(const TetMesh& mesh, const Eigen::VectorXd& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) return mesh.node_label(static_cast<int>(i / 3)) + " (" + "xyz"[i % 3] + ")";
+  }
+  return {};
+}
+
+}  // namespace
+
 StaticSolution StaticSolver::solve(const Eigen::VectorXd& f) const {
+  const TetMesh& mesh = m_body->mesh();
   const Eigen::Index n = m_body->stiffness().rows();
   if (f.size() != n) {
     throw InvalidInput("static solve: load vector has " + std::to_string(f.size()) +
                        " entries, the mesh has " + std::to_string(n) + " dofs");
   }
-  if (!f.allFinite()) throw InvalidInput("static solve: the load vector is not finite");
+  if (!f.allFinite()) throw InvalidInput("static solve: the load on " + first_non_finite(mesh, f) + " is not finite");
+
+  // The system is linear, so it is solved for f scaled by a power of two that brings its largest
+  // entry to [0.5, 1): the scaling is exact (the bits of u are those of the unscaled solve), and
+  // norms and residuals can neither overflow (a 1e300 N load) nor underflow. u is scaled back at
+  // the end, and only then can it overflow, which is reported as such.
+  const double peak = f.cwiseAbs().maxCoeff();
+  int exponent = 0;
+  if (peak > 0.0) std::frexp(peak, &exponent);
+  const Eigen::VectorXd scaled = peak > 0.0 ? Eigen::VectorXd(f * std::ldexp(1.0, -exponent)) : f;
+  auto refuse_overflow = [&](const Eigen::VectorXd& u) {
+    if (u.allFinite()) return;
+    throw NumericalFailure("static solve: the displacement overflows double precision on " + first_non_finite(mesh, u) +
+                           " (largest load " + format_number(peak) + " N, E = " +
+                           format_number(m_body->material().youngs_modulus) + " Pa): the load is too large for the stiffness");
+  };
 
   StaticSolution out;
-  out.balanced_load = f;
+  Eigen::VectorXd load = scaled;  // the balanced load, scaled
   if (free_body()) {
     // f' = f − M R Rᵀ f with RᵀMR = I.
-    const Eigen::VectorXd modal = m_rigid_modes.transpose() * f;
-    out.balanced_load -= m_body->mass_times(m_options.mass, m_rigid_modes * modal);
+    const Eigen::VectorXd modal = m_rigid_modes.transpose() * scaled;
+    load -= m_body->mass_times(m_options.mass, m_rigid_modes * modal);
   }
-  const Eigen::VectorXd& load = out.balanced_load;
-  const double load_norm = free_body() ? f.norm() : m_dofs.restrict_vector(f).norm();
-  if (load_norm == 0.0) {
-    out.displacement = Eigen::VectorXd::Zero(n);
-    return out;
-  }
+  const double load_norm = free_body() ? scaled.norm() : m_dofs.restrict_vector(scaled).norm();
 
-  // Solve on the kept dofs, then refine: u += K⁻¹(f − Ku) while the residual is above target.
-  const Eigen::VectorXd load_free = m_dofs.restrict_vector(load);
-  Eigen::VectorXd u_free = m_factor.solve(load_free);
-  auto residual_of = [&](const Eigen::VectorXd& u_full) -> Eigen::VectorXd {
-    // Free body: every dof counts, including the 3-2-1 dofs, whose reactions must vanish.
-    // Supported body: the free dofs only, through the smaller reduced K.
-    if (free_body()) return m_body->stiffness() * u_full - load;
-    return m_reduced_stiffness * u_free - load_free;
-  };
-  Eigen::VectorXd u = m_dofs.expand_vector(u_free);
-  Eigen::VectorXd residual = residual_of(u);
-  out.relative_residual = residual.norm() / load_norm;
-  while (out.relative_residual > m_options.target_residual &&
-         out.refinement_steps < m_options.max_refinement_steps) {
-    const Eigen::VectorXd r_free = free_body() ? m_dofs.restrict_vector(residual) : residual;
-    u_free -= m_factor.solve(r_free);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+  if (load_norm > 0.0) {
+    // Solve on the kept dofs, then refine: u += K⁻¹(f − Ku) while the residual is above target.
+    const Eigen::VectorXd load_free = m_dofs.restrict_vector(load);
+    Eigen::VectorXd u_free = m_factor.solve(load_free);
+    auto residual_of = [&](const Eigen::VectorXd& u_full) -> Eigen::VectorXd {
+      // Free body: every dof counts, including the 3-2-1 dofs, whose reactions must vanish.
+      // Supported body: the free dofs only, through the smaller reduced K.
+      if (free_body()) return m_body->stiffness() * u_full - load;
+      return m_reduced_stiffness * u_free - load_free;
+    };
     u = m_dofs.expand_vector(u_free);
-    residual = residual_of(u);
+    refuse_overflow(u);
+    Eigen::VectorXd residual = residual_of(u);
     out.relative_residual = residual.norm() / load_norm;
-    ++out.refinement_steps;
-  }
-  if (!(out.relative_residual <= m_options.max_residual)) {
-    throw NumericalFailure("static solve: relative residual " + std::to_string(out.relative_residual) +
-                           " after " + std::to_string(out.refinement_steps) +
-                           " refinement steps (limit " + std::to_string(m_options.max_residual) +
-                           "): the stiffness matrix is too ill-conditioned (slivers, nu near 0.5?)");
+    while (out.relative_residual > m_options.target_residual &&
+           out.refinement_steps < m_options.max_refinement_steps) {
+      const Eigen::VectorXd r_free = free_body() ? m_dofs.restrict_vector(residual) : residual;
+      u_free -= m_factor.solve(r_free);
+      u = m_dofs.expand_vector(u_free);
+      residual = residual_of(u);
+      out.relative_residual = residual.norm() / load_norm;
+      ++out.refinement_steps;
+    }
+    if (!(out.relative_residual <= m_options.max_residual)) {
+      throw NumericalFailure("static solve: relative residual " + format_number(out.relative_residual, 3) + " after " +
+                             std::to_string(out.refinement_steps) + " refinement steps (limit " +
+                             format_number(m_options.max_residual, 3) +
+                             "): the stiffness matrix is too ill-conditioned (slivers, nu near 0.5?)");
+    }
+    if (free_body()) {
+      // Remove the rigid part: u ← u − R Rᵀ M u.
+      u -= m_rigid_modes * (m_rigid_modes.transpose() * m_body->mass_times(m_options.mass, u));
+    }
   }
 
-  if (free_body()) {
-    // Remove the rigid part: u ← u − R Rᵀ M u.
-    u -= m_rigid_modes * (m_rigid_modes.transpose() * m_body->mass_times(m_options.mass, u));
-  } else {
+  if (!free_body()) {
     // Reactions at the fixed dofs only: row d of K is column d (K is symmetric), so each costs
-    // one sparse column instead of a full K·u.
+    // one sparse column instead of a full K·u. Computed also when no load reaches a free dof
+    // (u = 0): the supports then carry the whole load.
     const SparseMatrixD& k = m_body->stiffness();
     for (int d : m_fixed_dofs) {
       double ku = 0.0;
       for (SparseMatrixD::InnerIterator it(k, d); it; ++it) ku += it.value() * u[it.row()];
-      out.support_reaction[d % 3] += ku - f[d];
+      out.support_reaction[d % 3] += ku - scaled[d];
     }
   }
+  // Back to the caller's units; the scaling is by a power of two, hence exact.
+  const double unscale = std::ldexp(1.0, exponent);
+  out.support_reaction *= unscale;
+  out.balanced_load = load * unscale;
+  u *= unscale;
+  refuse_overflow(u);
   out.displacement = std::move(u);
   return out;
 }

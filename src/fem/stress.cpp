@@ -5,6 +5,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -17,9 +19,10 @@ void check_displacements(const TetMesh& mesh, const Eigen::VectorXd& u) {
     throw InvalidInput("stress: displacement vector has " + std::to_string(u.size()) +
                        " entries, the mesh needs " + std::to_string(3 * mesh.node_count()));
   }
+  if (u.allFinite()) return;
   for (Eigen::Index i = 0; i < u.size(); ++i) {
     if (!std::isfinite(u[i])) {
-      throw InvalidInput("stress: displacement of node " + std::to_string(i / 3) + " is not finite");
+      throw InvalidInput("stress: displacement of " + mesh.node_label(static_cast<int>(i / 3)) + " is not finite");
     }
   }
 }
@@ -83,60 +86,125 @@ inline double max_principal(double a, double b, double c, double d, double e, do
   return isotropic ? q : q + p * t;
 }
 
-}  // namespace
-
-Eigen::Matrix3d voigt_to_tensor(const Eigen::Matrix<double, 6, 1>& v) {
-  Eigen::Matrix3d s;
-  s << v[0], v[5], v[4], v[5], v[1], v[3], v[4], v[3], v[2];
-  return s;
+// The unit eigenvector of the largest eigenvalue `lambda` of the symmetric tensor
+// (a, b, c, d=yz, e=xz, f=xy), all already divided by the tensor's largest component. The rows of
+// A − λI span the orthogonal complement of the eigenvector, so the cross product of two of them
+// is parallel to it; of the three, the longest is the best conditioned (its length is
+// |λ₂ − λ||λ₃ − λ| for the best pair). When even that is at round-off level relative to the rows
+// (|cross| ≤ √ε·|row|², i.e. λ is within √ε of a second eigenvalue: rank(A − λI) ≤ 1), the
+// cross product's direction is noise, while any vector orthogonal to the largest row lies in
+// the eigenspace to within √ε: that is taken instead (crossover at √ε balances the two errors,
+// ε/ρ and ρ, for a relative gap ρ). All selects, no branches, so the loop vectorises.
+inline void max_direction(double a, double b, double c, double d, double e, double f, double lambda, double& vx,
+                          double& vy, double& vz) {
+  const double r0x = a - lambda, r0y = f, r0z = e;
+  const double r1x = f, r1y = b - lambda, r1z = d;
+  const double r2x = e, r2y = d, r2z = c - lambda;
+  // Cross products of row pairs.
+  const double c01x = r0y * r1z - r0z * r1y, c01y = r0z * r1x - r0x * r1z, c01z = r0x * r1y - r0y * r1x;
+  const double c02x = r0y * r2z - r0z * r2y, c02y = r0z * r2x - r0x * r2z, c02z = r0x * r2y - r0y * r2x;
+  const double c12x = r1y * r2z - r1z * r2y, c12y = r1z * r2x - r1x * r2z, c12z = r1x * r2y - r1y * r2x;
+  const double n01 = c01x * c01x + c01y * c01y + c01z * c01z;
+  const double n02 = c02x * c02x + c02y * c02y + c02z * c02z;
+  const double n12 = c12x * c12x + c12y * c12y + c12z * c12z;
+  const bool take02 = n02 > n01;
+  double bx = take02 ? c02x : c01x, by = take02 ? c02y : c01y, bz = take02 ? c02z : c01z;
+  double best = take02 ? n02 : n01;
+  const bool take12 = n12 > best;
+  bx = take12 ? c12x : bx;
+  by = take12 ? c12y : by;
+  bz = take12 ? c12z : bz;
+  best = take12 ? n12 : best;
+  // The largest row, and a vector orthogonal to it: w × e_k for the axis k where |w_k| is least.
+  const double m0 = r0x * r0x + r0y * r0y + r0z * r0z;
+  const double m1 = r1x * r1x + r1y * r1y + r1z * r1z;
+  const double m2 = r2x * r2x + r2y * r2y + r2z * r2z;
+  const bool row1 = m1 > m0;
+  double wx = row1 ? r1x : r0x, wy = row1 ? r1y : r0y, wz = row1 ? r1z : r0z;
+  double row = row1 ? m1 : m0;
+  const bool row2 = m2 > row;
+  wx = row2 ? r2x : wx;
+  wy = row2 ? r2y : wy;
+  wz = row2 ? r2z : wz;
+  row = row2 ? m2 : row;
+  const double ax = std::abs(wx), ay = std::abs(wy), az = std::abs(wz);
+  const bool axis_x = ax <= ay && ax <= az;
+  const bool axis_y = !axis_x && ay <= az;
+  // w × e_x = (0, w_z, −w_y); w × e_y = (−w_z, 0, w_x); w × e_z = (w_y, −w_x, 0).
+  double ox = axis_x ? 0.0 : (axis_y ? -wz : wy);
+  double oy = axis_x ? wz : (axis_y ? 0.0 : -wx);
+  double oz = axis_x ? -wy : (axis_y ? wx : 0.0);
+  // Isotropic (every row zero): any direction is principal; take x.
+  const bool isotropic = !(row > 0.0);
+  ox = isotropic ? 1.0 : ox;
+  const double on = ox * ox + oy * oy + oz * oz;
+  // ε = 2.2e-16: |cross|² > ε·|row|⁴ is |cross| > √ε·|row|².
+  const bool well_defined = best > 2.220446049250313e-16 * row * row;
+  double x = well_defined ? bx : ox, y = well_defined ? by : oy, z = well_defined ? bz : oz;
+  const double norm2 = well_defined ? best : on;
+  const double inv = 1.0 / std::sqrt(norm2);
+  x *= inv;
+  y *= inv;
+  z *= inv;
+  // Sign: the component of largest magnitude is positive.
+  const double px = std::abs(x), py = std::abs(y), pz = std::abs(z);
+  const double lead = px >= py && px >= pz ? x : (py >= pz ? y : z);
+  const double sign = lead < 0.0 ? -1.0 : 1.0;
+  vx = sign * x;
+  vy = sign * y;
+  vz = sign * z;
 }
 
-Eigen::Matrix<double, 6, 1> tensor_to_voigt(const Eigen::Matrix3d& s) {
-  Eigen::Matrix<double, 6, 1> v;
-  v << s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1);
-  return v;
+// λ_max (and its direction) of a tensor of any magnitude: the closed forms run on the tensor
+// divided by the power of two 2^e just below its largest component, so squares and cubes of
+// 1e300 Pa cannot overflow nor those of 1e-300 Pa underflow. A power of two scales exactly:
+// within the normal range the bits are those of the unscaled arithmetic (a repeated eigenvalue
+// stays exactly repeated), and λ is scaled back exactly. 2^e and 2^−e are built from the
+// exponent bits, branch-free; e is held in [−1022, 1022] so both are normal numbers.
+template <bool kDirection>
+inline double scaled_principal(double a, double b, double c, double d, double e, double f, double& vx, double& vy,
+                               double& vz) {
+  const double aa = std::abs(a), ab = std::abs(b), ac = std::abs(c);
+  const double ad = std::abs(d), ae = std::abs(e), af = std::abs(f);
+  double m = aa > ab ? aa : ab;
+  m = ac > m ? ac : m;
+  m = ad > m ? ad : m;
+  m = ae > m ? ae : m;
+  m = af > m ? af : m;
+  constexpr std::uint64_t kExponent = 0x7FF0000000000000ULL, kLow = 1ULL << 52, kHigh = 2045ULL << 52;
+  std::uint64_t bits = std::bit_cast<std::uint64_t>(m) & kExponent;
+  bits = bits < kLow ? kLow : bits;
+  bits = bits > kHigh ? kHigh : bits;
+  const double scale = std::bit_cast<double>(bits);
+  const double inv = std::bit_cast<double>(0x7FE0000000000000ULL - bits);  // 2^(1023−E) for 2^(E−1023)
+  const double sa = a * inv, sb = b * inv, sc = c * inv, sd = d * inv, se = e * inv, sf = f * inv;
+  const double lambda = max_principal(sa, sb, sc, sd, se, sf);
+  if constexpr (kDirection) max_direction(sa, sb, sc, sd, se, sf, lambda, vx, vy, vz);
+  return lambda * scale;
 }
 
-PrincipalStresses principal_stresses(const Eigen::Matrix<double, 6, 1>& voigt) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(voigt_to_tensor(voigt));
-  PrincipalStresses out;
-  // Eigen sorts ascending; reverse to descending.
-  for (int k = 0; k < 3; ++k) {
-    out.values[k] = solver.eigenvalues()[2 - k];
-    out.directions.col(k) = solver.eigenvectors().col(2 - k);
-  }
-  return out;
-}
-
-double max_principal_stress(const Eigen::Matrix<double, 6, 1>& v) {
-  return max_principal(v[0], v[1], v[2], v[3], v[4], v[5]);
-}
-
-StressField compute_stress(const TetMesh& mesh, const TetGradients& gradients,
-                           const ElasticMaterial& material, const Eigen::VectorXd& u) {
-  StressField stress;
-  Eigen::VectorXd unused;
-  compute_stress_and_max_principal(mesh, gradients, material, u, stress, unused);
-  return stress;
-}
-
-void compute_stress_and_max_principal(const TetMesh& mesh, const TetGradients& gradients,
-                                      const ElasticMaterial& material, const Eigen::VectorXd& u,
-                                      StressField& stress, Eigen::VectorXd& max_principal_out) {
+// Stress (and λ_max, and its direction) of every tet: one structure-of-arrays loop with
+// unit-stride reads of gradients and writes of the outputs; the only gathers are the 12
+// displacement values.
+template <bool kPrincipal, bool kDirection>
+void stress_kernel(const ElasticBody& body, const Eigen::VectorXd& u, StressField& stress,
+                   Eigen::VectorXd* max_principal_out, Eigen::MatrixX3d* directions) {
+  const TetMesh& mesh = body.mesh();
+  const TetGradients& gradients = body.gradients();
   check_displacements(mesh, u);
   const int n = mesh.tet_count();
   stress.resize(n, 6);
-  max_principal_out.resize(n);
-  const double lambda = material.lame_lambda();
-  const double mu = material.shear_modulus();
-  const int* tet = mesh.tets().data();  // column-major: node k of tet t at tet[k·n + t]
+  if constexpr (kPrincipal) max_principal_out->resize(n);
+  if constexpr (kDirection) directions->resize(n, 3);
+  const double lambda = body.material().lame_lambda();
+  const double mu = body.material().shear_modulus();
+  const int* tet = mesh.tets().data();   // column-major: node k of tet t at tet[k·n + t]
   const double* g = gradients.g.data();  // column k of tet t at g[k·n + t]
   const double* ud = u.data();
   double* s = stress.data();
-  double* smax = max_principal_out.data();
+  double* smax = kPrincipal ? max_principal_out->data() : nullptr;
+  double* dir = kDirection ? directions->data() : nullptr;
 
-  // Structure-of-arrays loop: unit-stride reads of gradients and writes of the six stress
-  // components; the only gathers are the 12 displacement values.
 #pragma GCC ivdep
   for (int t = 0; t < n; ++t) {
     const int n0 = tet[t], n1 = tet[n + t], n2 = tet[2 * n + t], n3 = tet[3 * n + t];
@@ -171,8 +239,115 @@ void compute_stress_and_max_principal(const TetMesh& mesh, const TetGradients& g
     s[3 * n + t] = syz;
     s[4 * n + t] = sxz;
     s[5 * n + t] = sxy;
-    smax[t] = max_principal(sxx, syy, szz, syz, sxz, sxy);
+    if constexpr (kPrincipal) {
+      double vx = 0.0, vy = 0.0, vz = 0.0;
+      smax[t] = scaled_principal<kDirection>(sxx, syy, szz, syz, sxz, sxy, vx, vy, vz);
+      if constexpr (kDirection) {
+        dir[t] = vx;
+        dir[n + t] = vy;
+        dir[2 * n + t] = vz;
+      }
+    }
   }
+}
+
+// λ_max of a finite stress is finite; a non-finite one means the stress itself overflowed.
+void check_principal(const TetMesh* mesh, const Eigen::VectorXd& values) {
+  if (values.allFinite()) return;
+  for (Eigen::Index t = 0; t < values.size(); ++t) {
+    if (!std::isfinite(values[t])) {
+      const std::string tet = mesh ? mesh->tet_label(static_cast<int>(t)) : "tet " + std::to_string(t + 1);
+      throw NumericalFailure("stress: the stress of " + tet + " overflows double precision (is the load or E absurd?)");
+    }
+  }
+}
+
+}  // namespace
+
+Eigen::Matrix3d voigt_to_tensor(const Eigen::Matrix<double, 6, 1>& v) {
+  Eigen::Matrix3d s;
+  s << v[0], v[5], v[4], v[5], v[1], v[3], v[4], v[3], v[2];
+  return s;
+}
+
+Eigen::Matrix<double, 6, 1> tensor_to_voigt(const Eigen::Matrix3d& s) {
+  Eigen::Matrix<double, 6, 1> v;
+  v << s(0, 0), s(1, 1), s(2, 2), s(1, 2), s(0, 2), s(0, 1);
+  return v;
+}
+
+Eigen::MatrixXd voigt_rows_to_tensor_rows(const StressField& v) {
+  Eigen::MatrixXd out(v.rows(), 9);
+  // Voigt (xx, yy, zz, yz, xz, xy) → row-major (xx xy xz; yx yy yz; zx zy zz).
+  const int voigt_of[9] = {0, 5, 4, 5, 1, 3, 4, 3, 2};
+  for (int k = 0; k < 9; ++k) out.col(k) = v.col(voigt_of[k]);
+  return out;
+}
+
+PrincipalStresses principal_stresses(const Eigen::Matrix<double, 6, 1>& voigt) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(voigt_to_tensor(voigt));
+  PrincipalStresses out;
+  // Eigen sorts ascending; reverse to descending.
+  for (int k = 0; k < 3; ++k) {
+    out.values[k] = solver.eigenvalues()[2 - k];
+    out.directions.col(k) = solver.eigenvectors().col(2 - k);
+  }
+  return out;
+}
+
+MaxPrincipal max_principal_with_direction(const Eigen::Matrix<double, 6, 1>& v) {
+  MaxPrincipal out;
+  out.value = scaled_principal<true>(v[0], v[1], v[2], v[3], v[4], v[5], out.direction.x(), out.direction.y(),
+                                     out.direction.z());
+  return out;
+}
+
+double max_principal_stress(const Eigen::Matrix<double, 6, 1>& v) {
+  double x, y, z;
+  return scaled_principal<false>(v[0], v[1], v[2], v[3], v[4], v[5], x, y, z);
+}
+
+StressField compute_stress(const ElasticBody& body, const Eigen::VectorXd& u) {
+  StressField stress;
+  stress_kernel<false, false>(body, u, stress, nullptr, nullptr);
+  return stress;
+}
+
+void compute_stress_and_max_principal(const ElasticBody& body, const Eigen::VectorXd& u, StressField& stress,
+                                      Eigen::VectorXd& max_principal_out) {
+  stress_kernel<true, false>(body, u, stress, &max_principal_out, nullptr);
+  check_principal(&body.mesh(), max_principal_out);
+}
+
+void compute_principal_stress(const ElasticBody& body, const Eigen::VectorXd& u, PrincipalStressField& out) {
+  stress_kernel<true, true>(body, u, out.stress, &out.max_principal, &out.max_direction);
+  check_principal(&body.mesh(), out.max_principal);
+}
+
+void max_principal_of(const StressField& stress, Eigen::VectorXd& max_principal_out, Eigen::MatrixX3d* directions) {
+  const Eigen::Index n = stress.rows();
+  max_principal_out.resize(n);
+  const double* s = stress.data();
+  double* smax = max_principal_out.data();
+  if (directions) {
+    directions->resize(n, 3);
+    double* dir = directions->data();
+#pragma GCC ivdep
+    for (Eigen::Index t = 0; t < n; ++t) {
+      double vx, vy, vz;
+      smax[t] = scaled_principal<true>(s[t], s[n + t], s[2 * n + t], s[3 * n + t], s[4 * n + t], s[5 * n + t], vx, vy, vz);
+      dir[t] = vx;
+      dir[n + t] = vy;
+      dir[2 * n + t] = vz;
+    }
+  } else {
+#pragma GCC ivdep
+    for (Eigen::Index t = 0; t < n; ++t) {
+      double vx, vy, vz;
+      smax[t] = scaled_principal<false>(s[t], s[n + t], s[2 * n + t], s[3 * n + t], s[4 * n + t], s[5 * n + t], vx, vy, vz);
+    }
+  }
+  check_principal(nullptr, max_principal_out);
 }
 
 }  // namespace fissure

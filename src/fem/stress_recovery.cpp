@@ -11,26 +11,6 @@
 namespace fissure {
 namespace {
 
-// The tets around each node, as compressed rows: tets of node v are entries [start[v], start[v+1]).
-struct NodeTets {
-  std::vector<int> start, tets;
-  explicit NodeTets(const TetMesh& mesh) : start(static_cast<std::size_t>(mesh.node_count()) + 1, 0) {
-    for (int t = 0; t < mesh.tet_count(); ++t)
-      for (int k = 0; k < 4; ++k) ++start[static_cast<std::size_t>(mesh.tets()(t, k)) + 1];
-    for (std::size_t v = 1; v < start.size(); ++v) start[v] += start[v - 1];
-    tets.resize(static_cast<std::size_t>(start.back()));
-    std::vector<int> fill(start.begin(), start.end() - 1);
-    for (int t = 0; t < mesh.tet_count(); ++t)
-      for (int k = 0; k < 4; ++k) tets[static_cast<std::size_t>(fill[static_cast<std::size_t>(mesh.tets()(t, k))]++)] = t;
-  }
-  template <class F>
-  void for_each(int v, F&& f) const {
-    for (int i = start[static_cast<std::size_t>(v)]; i < start[static_cast<std::size_t>(v) + 1]; ++i) {
-      f(tets[static_cast<std::size_t>(i)]);
-    }
-  }
-};
-
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
 void add_average(const TetMesh& mesh, const std::vector<int>& ring, int v, Triplets& out) {
@@ -72,13 +52,13 @@ bool add_patch_fit(const TetMesh& mesh, const std::vector<int>& patch, int v, Tr
 
 StressRecovery::StressRecovery(const TetMesh& mesh, RecoveryMethod method)
     : m_tets(mesh.tets()), m_tet_count(mesh.tet_count()) {
-  const NodeTets around(mesh);
+  const Incidence& around = mesh.node_tets();
   Triplets triplets;
   std::vector<int> ring, patch;
   std::vector<std::uint8_t> in_patch(static_cast<std::size_t>(mesh.tet_count()), 0);
   for (int v = 0; v < mesh.node_count(); ++v) {
     ring.clear();
-    around.for_each(v, [&](int t) { ring.push_back(t); });
+    ring.assign(around.begin(v), around.end(v));
     if (method == RecoveryMethod::NodalAverage) {
       add_average(mesh, ring, v, triplets);
       continue;
@@ -87,12 +67,12 @@ StressRecovery::StressRecovery(const TetMesh& mesh, RecoveryMethod method)
     patch.clear();
     for (int t : ring)
       for (int k = 0; k < 4; ++k)
-        around.for_each(mesh.tets()(t, k), [&](int s) {
-          if (!in_patch[static_cast<std::size_t>(s)]) {
-            in_patch[static_cast<std::size_t>(s)] = 1;
-            patch.push_back(s);
+        for (const int* s = around.begin(mesh.tets()(t, k)); s != around.end(mesh.tets()(t, k)); ++s) {
+          if (!in_patch[static_cast<std::size_t>(*s)]) {
+            in_patch[static_cast<std::size_t>(*s)] = 1;
+            patch.push_back(*s);
           }
-        });
+        }
     for (int t : patch) in_patch[static_cast<std::size_t>(t)] = 0;
     if (!add_patch_fit(mesh, patch, v, triplets)) {
       add_average(mesh, ring, v, triplets);
@@ -121,6 +101,21 @@ StressField StressRecovery::nodal(const StressField& tet_stress) const {
     nodes.row(v) = sum;
   }
   return nodes;
+}
+
+void compute_principal_stress(const ElasticBody& body, const Eigen::VectorXd& u, const StressRecovery& recovery,
+                              PrincipalStressField& out) {
+  if (!recovery.built_for(body.mesh())) {
+    throw InvalidInput("stress recovery: the operator was built for another mesh than " +
+                       (body.mesh().source_name().empty() ? std::string("the body's") : body.mesh().source_name()));
+  }
+  const StressField raw = compute_stress(body, u);
+  out.stress = recovery.smoothed_tets(raw);
+  max_principal_of(out.stress, out.max_principal, &out.max_direction);
+}
+
+bool StressRecovery::built_for(const TetMesh& mesh) const {
+  return mesh.tet_count() == m_tet_count && mesh.node_count() == m_weights.rows() && mesh.tets() == m_tets;
 }
 
 StressField StressRecovery::smoothed_tets(const StressField& tet_stress) const {

@@ -10,54 +10,6 @@
 
 namespace fissure {
 
-DofMap::DofMap(int dof_count, const std::vector<int>& fixed_dofs) {
-  m_free_index.assign(static_cast<std::size_t>(dof_count), 0);
-  for (int d : fixed_dofs) m_free_index.at(static_cast<std::size_t>(d)) = -1;
-  for (int d = 0; d < dof_count; ++d) {
-    if (m_free_index[static_cast<std::size_t>(d)] < 0) continue;
-    m_free_index[static_cast<std::size_t>(d)] = static_cast<int>(m_free_dofs.size());
-    m_free_dofs.push_back(d);
-  }
-}
-
-Eigen::VectorXd DofMap::restrict_vector(const Eigen::VectorXd& full) const {
-  Eigen::VectorXd out(free_count());
-  for (int k = 0; k < free_count(); ++k) out[k] = full[m_free_dofs[static_cast<std::size_t>(k)]];
-  return out;
-}
-
-Eigen::VectorXd DofMap::expand_vector(const Eigen::VectorXd& free) const {
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(dof_count());
-  for (int k = 0; k < free_count(); ++k) out[m_free_dofs[static_cast<std::size_t>(k)]] = free[k];
-  return out;
-}
-
-Eigen::SparseMatrix<double> DofMap::restrict_matrix(const Eigen::SparseMatrix<double>& full) const {
-  // Columns and rows keep their order, so the CSC structure is built directly without sorting.
-  Eigen::SparseMatrix<double> out(free_count(), free_count());
-  std::vector<int> outer(static_cast<std::size_t>(free_count()) + 1, 0);
-  for (int k = 0; k < free_count(); ++k) {
-    int count = 0;
-    for (Eigen::SparseMatrix<double>::InnerIterator it(full, m_free_dofs[static_cast<std::size_t>(k)]); it; ++it) {
-      count += m_free_index[static_cast<std::size_t>(it.row())] >= 0;
-    }
-    outer[k + 1] = outer[k] + count;
-  }
-  out.resizeNonZeros(outer.back());
-  std::copy(outer.begin(), outer.end(), out.outerIndexPtr());
-  int pos = 0;
-  for (int k = 0; k < free_count(); ++k) {
-    for (Eigen::SparseMatrix<double>::InnerIterator it(full, m_free_dofs[static_cast<std::size_t>(k)]); it; ++it) {
-      const int row = m_free_index[static_cast<std::size_t>(it.row())];
-      if (row < 0) continue;
-      out.innerIndexPtr()[pos] = row;
-      out.valuePtr()[pos] = it.value();
-      ++pos;
-    }
-  }
-  return out;
-}
-
 SupportSpec parse_support(std::string_view spec) {
   SupportSpec support;
   support.spec = std::string(spec);
@@ -103,6 +55,7 @@ std::vector<int> resolve_supports(const TetMesh& mesh, const std::vector<Support
 }
 
 void check_supports_for_mechanisms(const TetMesh& mesh, const std::vector<int>& fixed_dofs) {
+  check_fixed_dofs(mesh, fixed_dofs);
   if (fixed_dofs.empty()) return;  // a free body: solved by inertia relief
   const auto groups = nodes_by_component(mesh);
   const auto component_of_node = mesh.component_of_node();
@@ -125,15 +78,7 @@ void check_supports_for_mechanisms(const TetMesh& mesh, const std::vector<int>& 
     const auto& fixed = fixed_by_component[c];
     int rank = 0;
     if (!fixed.empty()) {
-      Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo, centroid = Eigen::Vector3d::Zero();
-      for (int v : groups[c]) {
-        const Eigen::Vector3d p = mesh.nodes().row(v);
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-        centroid += p;
-      }
-      centroid /= static_cast<double>(groups[c].size());
-      const Eigen::MatrixXd all = rigid_body_modes_at(mesh.nodes(), fixed, centroid, (hi - lo).norm());
+      const Eigen::MatrixXd all = rigid_body_modes_at(mesh.nodes(), fixed, node_frame(mesh, groups[c]));
       const auto& rows = rows_by_component[c];
       Eigen::MatrixXd r(static_cast<Eigen::Index>(rows.size()), 6);
       for (std::size_t k = 0; k < rows.size(); ++k) r.row(static_cast<Eigen::Index>(k)) = all.row(rows[k]);

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <cstring>
 
 namespace fissure {
@@ -133,7 +134,13 @@ TEST(ElasticMaterial, ValidationNamesTheParameter) {
   EXPECT_NE(message(ElasticMaterial{0.0, 0.2, 2400}).find("youngs_modulus 0 is outside (0, inf] Pa"),
             std::string::npos);
   EXPECT_NE(message(ElasticMaterial{-1.0, 0.2, 2400}).find("youngs_modulus -1"), std::string::npos);
-  EXPECT_NE(message(ElasticMaterial{3e10, 0.2, std::nan("")}).find("density"), std::string::npos);
+  EXPECT_NE(message(ElasticMaterial{3e10, 0.2, std::nan("")}).find("density nan is not a finite number"), std::string::npos);
+  // Issue 8: inf used to read "youngs_modulus inf is outside (0, inf] Pa", which is self-contradictory.
+  const ParameterInfo& e_info = elastic_material_parameters()[0];
+  EXPECT_EQ(parameter_problem(e_info, INFINITY, "--E"), "--E inf is not a finite number");
+  EXPECT_EQ(parameter_problem(e_info, -INFINITY, "--E"), "--E -inf is not a finite number");
+  EXPECT_EQ(parameter_problem(e_info, 1e-7, "--E"), "");
+  EXPECT_EQ(parameter_problem(e_info, -1e-7, "--E"), "--E -1e-07 is outside (0, inf] Pa");  // significant digits
   EXPECT_THROW(ElasticBody(test::box_mesh({0, 0, 0}, {1, 1, 1}, 1, 1, 1), ElasticMaterial{3e10, 0.5, 1}),
                InvalidInput);
 }

@@ -1,5 +1,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/fem/load.hpp"
+#include "fissure/fem/modal_basis.hpp"
+#include "fissure/fem/nodal_vectors.hpp"
 #include "fissure/fem/static_solver.hpp"
 #include "fissure/fem/stress.hpp"
 
@@ -50,7 +52,7 @@ TEST(StaticSolver, PatchTestOnADistortedMesh) {
   // cond(K_ii) of this small mesh is ~1e3, so the solve loses ~3 digits at most.
   EXPECT_LT((u - exact).cwiseAbs().maxCoeff(), 1e-12 * exact.cwiseAbs().maxCoeff());
 
-  const StressField s = compute_stress(*mesh, body->gradients(), m, u);
+  const StressField s = compute_stress(*body, u);
   const Eigen::Matrix3d eps = 0.5 * (a + a.transpose());
   const Eigen::Matrix3d sigma = m.lame_lambda() * eps.trace() * Eigen::Matrix3d::Identity() + 2 * m.shear_modulus() * eps;
   const Eigen::Matrix<double, 6, 1> expected = tensor_to_voigt(sigma);
@@ -80,7 +82,7 @@ TEST(StaticSolver, UniaxialBarIsExact) {
     worst = std::max(worst, (sol.displacement.segment<3>(3 * v) - exact).cwiseAbs().maxCoeff());
   }
   EXPECT_LT(worst, 1e-12 * strain);  // displacement error relative to the 1 m elongation scale
-  const StressField s = compute_stress(*mesh, body->gradients(), m, sol.displacement);
+  const StressField s = compute_stress(*body, sol.displacement);
   const double sigma = force / area;
   EXPECT_LT((s.col(0).array() - sigma).abs().maxCoeff(), 1e-11 * sigma);
   EXPECT_LT(s.rightCols<5>().cwiseAbs().maxCoeff(), 1e-11 * sigma);
@@ -148,8 +150,8 @@ TEST(StaticSolver, RotationInvariance) {
   const StaticSolution b = StaticSolver(rotated_body, supports).solve(rotate_nodal(q, f));
   // cond(K) ~ 1e4 here; rotation changes round-off only.
   EXPECT_LT((b.displacement - rotate_nodal(q, a.displacement)).norm(), 1e-10 * a.displacement.norm());
-  const StressField sa = compute_stress(*mesh, body->gradients(), m, a.displacement);
-  const StressField sb = compute_stress(*rotated_mesh, rotated_body->gradients(), m, b.displacement);
+  const StressField sa = compute_stress(*body, a.displacement);
+  const StressField sb = compute_stress(*rotated_body, b.displacement);
   double worst = 0.0, scale = sa.cwiseAbs().maxCoeff();
   for (int t = 0; t < mesh->tet_count(); ++t) {
     const Eigen::Matrix3d expected = q * voigt_to_tensor(sa.row(t).transpose()) * q.transpose();
@@ -170,7 +172,7 @@ TEST(StaticSolver, ScaleInvariance) {
     LoadSpec load = parse_load("xmax=0,0,-1000");
     load.force *= s * s;
     const StaticSolution sol = solver.solve(assemble_load(*mesh, load));
-    const StressField stress = compute_stress(*mesh, body->gradients(), m, sol.displacement);
+    const StressField stress = compute_stress(*body, sol.displacement);
     if (s == 1.0) {
       reference_u = sol.displacement;
       reference_s = stress;
@@ -278,6 +280,160 @@ TEST(StaticSolver, BadInputIsNamed) {
   f[7] = std::numeric_limits<double>::infinity();
   EXPECT_THROW(solver.solve(f), InvalidInput);
   EXPECT_EQ(solver.solve(Eigen::VectorXd::Zero(3 * mesh->node_count())).displacement.norm(), 0.0);
+}
+
+// Issue 8: ModalBasis::compute with a fixed dof outside the mesh read component_of_node out of
+// bounds (a segfault); the static solver checked, the modal path did not. One check now guards
+// every entry point, with one message.
+TEST(StaticSolver, FixedDofsOutsideTheMeshAreRefusedEverywhere) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 0.2, 0.1}, 4, 1, 1);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  std::vector<int> dofs = fixed(*mesh, {"xmin"});
+  const int n = 3 * mesh->node_count();
+  for (int bad : {n, n + 5, -1, 1 << 30}) {
+    std::vector<int> with_bad = dofs;
+    with_bad.push_back(bad);
+    const std::string expected = "fixed dof " + std::to_string(bad) + " is outside the " + std::to_string(n) + " dofs";
+    auto expect_refused = [&](auto&& call, const char* what) {
+      try {
+        call();
+        ADD_FAILURE() << what << " accepted dof " << bad;
+      } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << what << ": " << e.what();
+      }
+    };
+    expect_refused([&] { check_supports_for_mechanisms(*mesh, with_bad); }, "mechanism check");
+    expect_refused([&] { StaticSolver(body, with_bad); }, "static solver");
+    ModalOptions options;
+    options.mode_count = 3;
+    expect_refused([&] { ModalBasis::compute(body, with_bad, options); }, "modal basis");
+    EXPECT_THROW(DofMap(n, with_bad), InvalidInput);
+  }
+}
+
+// Issue 8: when the whole load sat on fixed nodes, solve() returned early with a zero reaction.
+// The supports carry it all: the reaction is −F.
+TEST(StaticSolver, SupportReactionWhenTheWholeLoadSitsOnFixedNodes) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 0.2, 0.1}, 5, 1, 1);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  const StaticSolver solver(body, fixed(*mesh, {"xmin"}));
+  const Eigen::VectorXd f = assemble_load(*mesh, parse_load("xmin=10,-20,30"));
+  const StaticSolution sol = solver.solve(f);
+  EXPECT_EQ(sol.displacement.norm(), 0.0);
+  EXPECT_LT((sol.support_reaction - Eigen::Vector3d(-10, 20, -30)).norm(), 1e-12 * 40);
+  // Part on the supports, part free: still −(total load).
+  const Eigen::VectorXd both = f + assemble_load(*mesh, parse_load("xmax=0,0,-50"));
+  EXPECT_LT((solver.solve(both).support_reaction - Eigen::Vector3d(-10, 20, 20)).norm(), 1e-9 * 60);
+}
+
+// Issue 8: a 1e300 N load was refused as "too ill-conditioned (slivers, nu near 0.5?)": ‖f‖²
+// overflowed. Linear elasticity scales: u(1e300 N) = 1e297·u(1e3 N), and the solver now gets it
+// (to the same round-off: the power-of-two scaling is exact). A displacement that really
+// overflows (E = 1e-300 Pa) says so.
+TEST(StaticSolver, HugeLoadsAreSolvedAndOverflowIsNamed) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 0.2, 0.1}, 10, 2, 2);
+  auto body = std::make_shared<const ElasticBody>(mesh, test::concrete());
+  const StaticSolver solver(body, fixed(*mesh, {"xmin"}));
+  const Eigen::VectorXd f = assemble_load(*mesh, parse_load("xmax=0,0,-1000"));
+  const StaticSolution small = solver.solve(f);
+  const StaticSolution huge = solver.solve(f * 1e297);
+  ASSERT_TRUE(huge.displacement.allFinite());
+  EXPECT_LT((huge.displacement / 1e297 - small.displacement).norm(), 1e-14 * small.displacement.norm());
+  EXPECT_LT(huge.relative_residual, 1e-10);
+  EXPECT_NEAR(huge.support_reaction.z() / 1e297, 1000.0, 1e-9 * 1000);
+  const StaticSolution tiny = solver.solve(f * 1e-300);
+  EXPECT_LT((tiny.displacement / 1e-300 - small.displacement).norm(), 1e-12 * small.displacement.norm());
+
+  auto soft = std::make_shared<const ElasticBody>(mesh, ElasticMaterial{1e-300, 0.2, 2400});
+  const StaticSolver soft_solver(soft, fixed(*mesh, {"xmin"}));
+  try {
+    soft_solver.solve(f * 1e10);
+    FAIL() << "a displacement of ~1e306 m per 1e-300 Pa cannot be represented";
+  } catch (const NumericalFailure& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("overflows double precision"), std::string::npos) << message;
+    EXPECT_NE(message.find("E = 1e-300 Pa"), std::string::npos) << message;
+    EXPECT_EQ(message.find("ill-conditioned"), std::string::npos) << message;
+  }
+  // E = 1e-300 with a modest load: representable, solved (u ≈ 3e-3·1e310 would not be; 1e-300
+  // N is fine), and max |u| is finite where √(x² + y² + z²) of the components overflowed.
+  const StaticSolution soft_small = soft_solver.solve(f * 1e-300);
+  EXPECT_TRUE(soft_small.displacement.allFinite());
+}
+
+// Issue 8: the CLI printed max |u| as √(max Σ u²), which is "inf m" at 1e200 m and 0 at
+// 1e-300 m. max_nodal_magnitude scales per node.
+TEST(NodalVectors, MaxMagnitudeNeitherOverflowsNorUnderflows) {
+  Eigen::VectorXd u(9);
+  u << 1, 2, 2, -3, 4, 0, 0, 0, 0;
+  NodalMaximum m = max_nodal_magnitude(u);
+  EXPECT_DOUBLE_EQ(m.magnitude, 5.0);
+  EXPECT_EQ(m.node, 1);
+  for (double scale : {1e200, 1e-300, 1e-320}) {
+    m = max_nodal_magnitude(u * scale);
+    EXPECT_NEAR(m.magnitude / scale, 5.0, 1e-12 * (scale < 1e-310 ? 1e8 : 1.0)) << scale;  // subnormals keep fewer digits
+    EXPECT_EQ(m.node, 1);
+  }
+  EXPECT_EQ(max_nodal_magnitude(Eigen::VectorXd::Zero(6)).magnitude, 0.0);
+  EXPECT_EQ(max_nodal_magnitude(Eigen::VectorXd()).node, -1);
+  u[4] = NAN;
+  EXPECT_TRUE(std::isnan(max_nodal_magnitude(u).magnitude));
+}
+
+// Issue 8: `ball:0,0,0.1,0.15` on a 0.1 m plate selected the top faces and, since the ball
+// reaches through, a third of the force landed on the bottom faces pushing the same way. The
+// patch now loads the surface facing its centre: all the force on the top, the same total.
+TEST(Load, PatchOnAThinPlateLoadsOnlyTheSurfaceItsCentreIsOn) {
+  auto mesh = test::box_mesh({-0.5, -0.5, 0}, {1.0, 1.0, 0.1}, 20, 20, 2);
+  auto on_plane = [&](const Eigen::VectorXd& f, double z) {
+    Eigen::Vector3d total = Eigen::Vector3d::Zero();
+    for (int v = 0; v < mesh->node_count(); ++v)
+      if (std::abs(mesh->nodes()(v, 2) - z) < 1e-12) total += f.segment<3>(3 * v);
+    return total;
+  };
+  const Eigen::Vector3d force(0, 0, -1e4);
+  const Eigen::VectorXd top = assemble_load(*mesh, parse_load("ball:0,0,0.1,0.15=0,0,-1e4"));
+  EXPECT_LT((on_plane(top, 0.1) - force).norm(), 1e-12 * 1e4);  // all of it on top
+  EXPECT_EQ(on_plane(top, 0.0).norm(), 0.0);                      // none on the bottom
+  // An explicit normal picks the other side, and a centre below the plate does too.
+  const Eigen::VectorXd bottom = assemble_load(*mesh, parse_load("ball:0,0,0.1,0.15^0,0,-2=0,0,-1e4"));
+  EXPECT_LT((on_plane(bottom, 0.0) - force).norm(), 1e-12 * 1e4);
+  const Eigen::VectorXd below = assemble_load(*mesh, parse_load("ball:0,0,-0.01,0.15=0,0,-1e4"));
+  EXPECT_LT((on_plane(below, 0.0) - force).norm(), 1e-12 * 1e4);
+  // A box through the whole plate around its centre: the nearer face wins (the top here).
+  const Eigen::VectorXd box = assemble_load(*mesh, parse_load("box:-0.1,0.1,-0.1,0.1,-1,1.1=0,0,-1e4"));
+  EXPECT_LT((on_plane(box, 0.1) - force).norm(), 1e-12 * 1e4);
+  // A ball near a corner reaches the sides, which face at right angles: left out.
+  const Eigen::VectorXd corner = assemble_load(*mesh, parse_load("ball:0.45,0.45,0.1,0.2=0,0,-1e4"));
+  EXPECT_LT((on_plane(corner, 0.1) - force).norm(), 1e-12 * 1e4);
+  // The same selection on a body whose top is not flat would be the nearest face's side; a named
+  // surface is loaded whole, and a normal filters it.
+  const Eigen::VectorXd named = assemble_load(*mesh, parse_load("zmax=0,0,-1e4"));
+  EXPECT_LT((on_plane(named, 0.1) - force).norm(), 1e-12 * 1e4);
+  EXPECT_THROW(assemble_load(*mesh, parse_load("zmax^0,0,-1=0,0,-1")), InvalidInput);
+}
+
+TEST(Load, NormalSyntaxIsParsedAndRefusedClearly) {
+  const LoadSpec load = parse_load("ball:0,0,0.1,0.15^0,0,3=1,2,3");
+  ASSERT_TRUE(load.normal.has_value());
+  EXPECT_EQ(*load.normal, Eigen::Vector3d(0, 0, 1));
+  EXPECT_EQ(load.force, Eigen::Vector3d(1, 2, 3));
+  EXPECT_EQ(load.selection.kind, Selection::Kind::Ball);
+  EXPECT_FALSE(parse_load("zmax=1,2,3").normal.has_value());
+  auto message = [](const char* spec) {
+    try {
+      parse_load(spec);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("zmax^0,0,0=1,2,3").find("normal after '^' is zero"), std::string::npos);
+  EXPECT_NE(message("zmax^0,1=1,2,3").find("expected 3 numbers nx,ny,nz"), std::string::npos) << message("zmax^0,1=1,2,3");
+  EXPECT_NE(message("zmax=1,2").find("expected 3 numbers fx,fy,fz"), std::string::npos) << message("zmax=1,2");
+  EXPECT_NE(message("zmax=1,inf,2").find("'inf' is not a finite number"), std::string::npos) << message("zmax=1,inf,2");
+  EXPECT_NE(message("box:0,1=1,2,3").find("expected 6 numbers x0,x1,y0,y1,z0,z1"), std::string::npos)
+      << message("box:0,1=1,2,3");
 }
 
 TEST(Load, GravityAndPatchTotals) {

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <memory>
+#include <mutex>
 
 namespace fissure {
 
@@ -17,6 +18,9 @@ namespace fissure {
 /// cheap, and slightly lower in frequency; consistent has the exact second moment).
 enum class MassKind { Lumped, Consistent };
 
+/// Immutable after construction except for two lazily built mass matrices, which are made once
+/// under std::call_once: every const method is safe to call from any number of threads at once
+/// (the fit runs trials on one shared body).
 class ElasticBody {
 public:
   /// Validates the material (InvalidInput), computes gradients and assembles K on `threads`
@@ -32,8 +36,8 @@ public:
   const SparseMatrixD& stiffness() const { return m_stiffness; }
   /// Lumped mass per dof, kg.
   const Eigen::VectorXd& lumped_mass() const { return m_lumped_mass; }
-  /// M of the requested kind as a sparse matrix (diagonal for Lumped). Consistent M is assembled
-  /// on first use.
+  /// M of the requested kind as a sparse matrix (diagonal for Lumped). Both are built on first use
+  /// (thread-safe); the reference stays valid for the body's lifetime.
   const SparseMatrixD& mass_matrix(MassKind kind) const;
   /// M·x for the requested kind.
   Eigen::VectorXd mass_times(MassKind kind, const Eigen::VectorXd& x) const;
@@ -45,8 +49,12 @@ private:
   std::unique_ptr<StiffnessPattern> m_pattern;
   SparseMatrixD m_stiffness;
   Eigen::VectorXd m_lumped_mass;
-  mutable SparseMatrixD m_lumped_matrix;
-  mutable SparseMatrixD m_consistent_mass;
+  // Lazily built matrices, in their own block so the body stays movable (once_flag is not).
+  struct MassCache {
+    std::once_flag lumped_made, consistent_made;
+    SparseMatrixD lumped, consistent;
+  };
+  std::unique_ptr<MassCache> m_mass_cache = std::make_unique<MassCache>();
 };
 
 }  // namespace fissure

@@ -47,8 +47,9 @@ struct ElasticMaterial {
 /// The parameter table of ElasticMaterial: youngs_modulus, poisson_ratio, density.
 const std::array<ParameterInfo, 3>& elastic_material_parameters();
 
-/// "" when `value` is inside the range of `info`, else "<label> <value> is outside [min, max) unit"
-/// (label: the JSON name or the CLI flag, whichever the caller shows its user).
+/// "" when `value` is inside the range of `info`, else "<label> <value> is outside [min, max) unit",
+/// or "<label> inf is not a finite number" for inf and nan (label: the JSON name or the CLI flag,
+/// whichever the caller shows its user). Numbers are printed by format_number.
 std::string parameter_problem(const ParameterInfo& info, double value, const std::string& label);
 
 }  // namespace fissure

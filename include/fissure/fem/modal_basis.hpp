@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -29,6 +30,9 @@ struct ModalOptions {
   int max_iterations = 1000;          ///< Lanczos restarts
   /// Lanczos basis size; 0 picks max(2·nev + 1, 20) (Spectra's advice ncv ≥ 2·nev), capped at n.
   int krylov_size = 0;
+  /// Refuse (InvalidInput, before any factorisation) when modal_memory_estimate() exceeds this;
+  /// 0 = the machine's physical memory, UINT64_MAX = no limit. Not part of the cache key.
+  std::uint64_t memory_limit_bytes = 0;
 
   std::vector<std::string> problems() const;
   void validate() const;
@@ -36,8 +40,8 @@ struct ModalOptions {
 
 class ModalBasis {
 public:
-  /// Format version of save()/load() files and of the cache key.
-  static constexpr int kFormatVersion = 1;
+  /// Format version of save()/load() files and of the cache key (2: files end in a checksum).
+  static constexpr int kFormatVersion = 2;
 
   ModalBasis() = default;
 
@@ -48,9 +52,14 @@ public:
   /// flexible eigenvalue from quadratic trial fields; fem-pitfalls.md §2.7 shows −1e-3…−1e-1·λ₇
   /// is safe). That the
   /// rigid motions carry no energy (rᵀKr ≤ 1e-6·λ₇) is checked, so a further zero mode is
-  /// reported rather than hidden. Throws InvalidInput for bad options or a mechanism, NumericalFailure
-  /// when Spectra does not converge or the spectrum is not what a free body must have, Cancelled
-  /// when `cancel` fires (checked around the eigensolve). Cost: ≈ 0.5 s for 50 modes at 24K tets.
+  /// reported rather than hidden. Throws InvalidInput for bad options, a fixed dof outside the
+  /// mesh, a mechanism, or a request whose memory estimate exceeds options.memory_limit_bytes
+  /// (checked before any factorisation); NumericalFailure when Spectra does not converge or the
+  /// spectrum is not what a free body must have; Cancelled when `cancel` fires — checked at every
+  /// Lanczos operator application (one pair of triangular solves), so within milliseconds.
+  /// `progress` hears stage "modal analysis" at most every 0.2 s during Lanczos (the fraction is
+  /// an estimate: the number of restarts is not known in advance). Cost: ≈ 0.5 s for 50 modes at
+  /// 24K tets, ≈ 14 s for 400.
   static ModalBasis compute(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
                             const ModalOptions& options, ProgressSink* progress = nullptr,
                             const CancelToken* cancel = nullptr);
@@ -72,7 +81,9 @@ public:
 
   /// Modal static solve u = Σᵢ φᵢ (φᵢᵀ f) / λᵢ over the flexible modes (f: 3·#nodes, N). For a free
   /// body this is the inertia-relief solution truncated to m modes. O(#dofs · m). Φᵀf is always
-  /// accumulated in double; `precision` picks the arithmetic of the expansion Φq.
+  /// accumulated in double; `precision` picks the arithmetic of the expansion Φq. Throws
+  /// InvalidInput for a wrong size or a non-finite f. Thread-safe, in both precisions (the float
+  /// copy of Φ is made once under std::call_once).
   Eigen::VectorXd static_displacement(const Eigen::VectorXd& f,
                                       ModalPrecision precision = ModalPrecision::Double) const;
 
@@ -106,12 +117,20 @@ private:
 /// ~/.cache/fissure.
 std::filesystem::path default_cache_directory();
 
+/// Bytes a modal analysis needs at its peak, estimated from the free dofs, the modes, the Krylov
+/// size and nnz(K_ff): Φ (twice), the Krylov basis, Spectra's dense ncv² matrices and the factor.
+double modal_memory_estimate(Eigen::Index dofs, Eigen::Index modes, Eigen::Index krylov_size,
+                             Eigen::Index stiffness_nonzeros);
+
 /// The basis for (body, fixed dofs, options): loaded from `cache_dir` when a file with the same
-/// content key exists and reads back cleanly, else computed and saved there (a cache that
-/// cannot be written is skipped, not an error). `loaded` tells which happened.
+/// content key exists and reads back cleanly (checksum included), else computed and saved there.
+/// A cache that cannot be written is not an error, but when `cache_warning` is given it receives
+/// one line saying so ("modal basis not cached (cannot create /x: Permission denied); it will be
+/// computed again next time"), and is cleared otherwise, for the caller to show once. `loaded`
+/// tells whether the basis came from the cache.
 ModalBasis cached_modal_basis(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
                               const ModalOptions& options, const std::filesystem::path& cache_dir,
                               bool* loaded = nullptr, ProgressSink* progress = nullptr,
-                              const CancelToken* cancel = nullptr);
+                              const CancelToken* cancel = nullptr, std::string* cache_warning = nullptr);
 
 }  // namespace fissure

@@ -26,7 +26,10 @@ public:
   /// Re-factorises a matrix with the same pattern as the last one, reusing the analysis.
   void refactorize(const Eigen::SparseMatrix<double>& a);
 
-  /// x = A⁻¹ b for one or several right-hand sides (columns). Precondition: factorize() succeeded.
+  /// x = A⁻¹ b for one or several right-hand sides (columns). Throws InvalidInput when nothing is
+  /// factorised or b has the wrong row count. Thread-safe: concurrent solves on one factor each
+  /// use their own CHOLMOD workspace and only read the factor (factorize/refactorize, being
+  /// non-const, must not run at the same time).
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
 

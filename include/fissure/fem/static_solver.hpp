@@ -36,7 +36,7 @@ struct StaticSolution {
   /// at the 3-2-1 dofs, which must vanish). 0 for a zero load.
   double relative_residual = 0.0;
   /// Total force the supports exert on the body (N): equilibrium makes it −Σf for a supported
-  /// body (tested); 0 for a free body.
+  /// body (tested), also when the whole load sits on fixed nodes; 0 for a free body.
   Eigen::Vector3d support_reaction = Eigen::Vector3d::Zero();
   int refinement_steps = 0;
 };
@@ -50,8 +50,13 @@ public:
                const StaticSolverOptions& options = {});
 
   /// Displacements for the nodal forces `f` (3·#nodes, N). Throws InvalidInput for a wrong size
-  /// or non-finite f, NumericalFailure when the residual stays above max_residual.
-  /// Cost: 2 triangular solves per refinement step (≈ 3 ms at 24K tets). Not thread-safe.
+  /// or a non-finite f (naming the node), NumericalFailure when the residual stays above
+  /// max_residual, or when the displacement overflows double precision (a load far too large for
+  /// the stiffness: said so, not blamed on the mesh). Any finite load whose solution is
+  /// representable is solved: f is scaled by a power of two first, so ‖f‖ never overflows.
+  /// Cost: 2 triangular solves per refinement step (≈ 3 ms at 24K tets). Thread-safe: any number
+  /// of threads may solve on one solver at once (each solve has its own CHOLMOD workspace), with
+  /// the same bits as a serial solve.
   StaticSolution solve(const Eigen::VectorXd& f) const;
 
   bool free_body() const { return m_fixed_dofs.empty(); }
@@ -75,9 +80,5 @@ private:
   SparseCholesky m_factor;
   Eigen::MatrixXd m_rigid_modes;
 };
-
-/// The rigid motions of every component of `body`'s mesh, M-orthonormal for the given mass:
-/// 3·#nodes × 6·#components.
-Eigen::MatrixXd mass_orthonormal_rigid_modes(const ElasticBody& body, MassKind mass);
 
 }  // namespace fissure

@@ -27,6 +27,7 @@ enum class RecoveryMethod {
   PatchFit,
 };
 
+/// Immutable once built: every const method is safe to call from any number of threads.
 class StressRecovery {
 public:
   /// Builds the operator for `mesh`. O(#nodes · patch size); ≈ 150 tets per patch in the tile.
@@ -43,6 +44,8 @@ public:
   const Eigen::SparseMatrix<double, Eigen::RowMajor>& weights() const { return m_weights; }
   /// Nodes whose patch could not be fitted and that took the nodal average (PatchFit only).
   int fallback_nodes() const { return m_fallback_nodes; }
+  /// True when `mesh` has the node count and tets this operator was built from.
+  bool built_for(const TetMesh& mesh) const;
 
 private:
   Eigen::MatrixX4i m_tets;
@@ -50,5 +53,12 @@ private:
   Eigen::SparseMatrix<double, Eigen::RowMajor> m_weights;
   int m_fallback_nodes = 0;
 };
+
+/// The recovered stress state of every tet in one call: raw stress of `body` for `u`, smoothed by
+/// `recovery` (smoothed_tets), then λ_max and its direction per tet by the vectorised closed forms
+/// of stress.hpp (same guarantees). 1.7 ms CPU for the 21.5K-tet tile on one core (bench_fem). Throws
+/// InvalidInput when `recovery` was built for another mesh, or as compute_stress. Thread-safe.
+void compute_principal_stress(const ElasticBody& body, const Eigen::VectorXd& u, const StressRecovery& recovery,
+                              PrincipalStressField& out);
 
 }  // namespace fissure

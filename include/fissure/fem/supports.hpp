@@ -5,11 +5,9 @@
 /// mechanism) is refused, because every solver tried solves such a system silently and wrongly
 /// (fem-pitfalls.md §2.1).
 
+#include "fissure/fem/dof_map.hpp"
 #include "fissure/fem/selection.hpp"
 #include "fissure/mesh/tet_mesh.hpp"
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include <array>
 #include <string>
@@ -17,30 +15,6 @@
 #include <vector>
 
 namespace fissure {
-
-/// Numbering of the free degrees of freedom (dof 3·v + i of node v).
-class DofMap {
-public:
-  DofMap() = default;
-  /// All `dof_count` dofs minus `fixed_dofs` (any order, duplicates allowed).
-  DofMap(int dof_count, const std::vector<int>& fixed_dofs);
-
-  int dof_count() const { return static_cast<int>(m_free_index.size()); }
-  int free_count() const { return static_cast<int>(m_free_dofs.size()); }
-  /// Index among free dofs, or −1 for a fixed dof.
-  int free_index(int dof) const { return m_free_index[static_cast<std::size_t>(dof)]; }
-  const std::vector<int>& free_dofs() const { return m_free_dofs; }
-
-  Eigen::VectorXd restrict_vector(const Eigen::VectorXd& full) const;
-  /// Free entries placed back, fixed dofs zero.
-  Eigen::VectorXd expand_vector(const Eigen::VectorXd& free) const;
-  /// Rows and columns of the free dofs. O(nnz).
-  Eigen::SparseMatrix<double> restrict_matrix(const Eigen::SparseMatrix<double>& full) const;
-
-private:
-  std::vector<int> m_free_index;
-  std::vector<int> m_free_dofs;
-};
 
 /// One support: a selection and the components it fixes.
 struct SupportSpec {
