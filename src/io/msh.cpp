@@ -99,21 +99,6 @@ TetMesh read_msh(const fs::path& path) {
   return TetMesh(std::move(nodes), std::move(tets), name, std::move(sets), std::move(tags));
 }
 
-Eigen::MatrixXd voigt_rows_to_tensor_rows(const Eigen::Matrix<double, Eigen::Dynamic, 6>& v) {
-  Eigen::MatrixXd out(v.rows(), 9);
-  // Voigt (xx, yy, zz, yz, xz, xy) → row-major (xx xy xz; yx yy yz; zx zy zz).
-  out.col(0) = v.col(0);
-  out.col(1) = v.col(5);
-  out.col(2) = v.col(4);
-  out.col(3) = v.col(5);
-  out.col(4) = v.col(1);
-  out.col(5) = v.col(3);
-  out.col(6) = v.col(4);
-  out.col(7) = v.col(3);
-  out.col(8) = v.col(2);
-  return out;
-}
-
 void check_msh_output_path(const fs::path& path) {
   if (!is_stream_target(path)) {
     std::string file = path.filename().string();

@@ -60,7 +60,4 @@ void check_msh_output_path(const std::filesystem::path& path);
 void write_msh(const std::filesystem::path& path, const TetMesh& mesh,
                const std::vector<MshView>& views = {}, const MshWriteOptions& options = {});
 
-/// Row-major 3×3 tensors (9 columns) from Voigt stresses (xx, yy, zz, yz, xz, xy), for views.
-Eigen::MatrixXd voigt_rows_to_tensor_rows(const Eigen::Matrix<double, Eigen::Dynamic, 6>& voigt);
-
 }  // namespace fissure
