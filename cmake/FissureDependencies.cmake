@@ -20,13 +20,17 @@ target_include_directories(fissure_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DI
 target_link_libraries(fissure_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY})
 add_library(Fissure::Cholmod ALIAS fissure_cholmod)
 
-# gmsh 4.8 C++ API (libgmsh-dev): header gmsh.h, library libgmsh.
-find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
-find_library(GMSH_LIBRARY gmsh REQUIRED)
-add_library(fissure_gmsh INTERFACE)
-target_include_directories(fissure_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
-target_link_libraries(fissure_gmsh INTERFACE ${GMSH_LIBRARY})
-add_library(Fissure::Gmsh ALIAS fissure_gmsh)
+# gmsh 4.8 C++ API (libgmsh-dev): header gmsh.h, library libgmsh. Only the io tests link it,
+# to open every file Fissure writes with gmsh itself; Fissure writes and reads MSH with its own
+# code, so no command loads libgmsh's ~53 shared libraries (docs/architecture.md).
+if(FISSURE_BUILD_TESTS)
+  find_path(GMSH_INCLUDE_DIR gmsh.h REQUIRED)
+  find_library(GMSH_LIBRARY gmsh REQUIRED)
+  add_library(fissure_gmsh INTERFACE)
+  target_include_directories(fissure_gmsh SYSTEM INTERFACE ${GMSH_INCLUDE_DIR})
+  target_link_libraries(fissure_gmsh INTERFACE ${GMSH_LIBRARY})
+  add_library(Fissure::Gmsh ALIAS fissure_gmsh)
+endif()
 
 find_package(CGAL 5.5 REQUIRED)
 find_package(assimp REQUIRED)

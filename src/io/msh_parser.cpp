@@ -2,6 +2,7 @@
 
 #include "fissure/base/error.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -54,11 +55,27 @@ public:
   T number() {
     const std::string w = word();
     T value{};
-    const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), value);
-    if (ec != std::errc() || end != w.data() + w.size()) fail("'" + w.substr(0, 40) + "' is not a number");
+    const char* first = w.data();
+    const char* last = w.data() + w.size();
+    auto [end, ec] = std::from_chars(first, last, value);
     if constexpr (std::is_floating_point_v<T>) {
-      if (!std::isfinite(value)) fail("a coordinate is not finite");
+      // Past double's range ("1e400", "1e-400"): what strtod gives (±inf, ±0), read through
+      // long double, so that the caller's finiteness check names the node.
+      if (ec == std::errc::result_out_of_range) {
+        long double wide = 0;
+        const auto wide_result = std::from_chars(first, last, wide);
+        end = wide_result.ptr;
+        if (wide_result.ec == std::errc::result_out_of_range) {  // beyond long double too
+          const std::size_t e = w.find_first_of("eE");
+          wide = e != std::string::npos && e + 1 < w.size() && w[e + 1] == '-' ? 0.0L : HUGE_VALL;
+          if (w[0] == '-') wide = -wide;
+        }
+        value = static_cast<T>(wide);
+        ec = std::errc();
+      }
     }
+    // Non-finite values ("nan", "inf") are returned: the caller knows which node holds them.
+    if (ec != std::errc() || end != last) fail("'" + w.substr(0, 40) + "' is not a number");
     return value;
   }
   template <class T>
@@ -351,7 +368,15 @@ MshContent parse_msh(const std::string& bytes, const std::string& name) {
   if (!have_nodes || !have_elements) {
     throw IoError(name + ": truncated or corrupt MSH file (no " + std::string(have_nodes ? "$Elements" : "$Nodes") + " section)");
   }
-  // Every element's nodes must exist.
+  // Element tags are unique (they name the tets in every message), and every element's nodes exist.
+  std::vector<std::int64_t> element_tags;
+  element_tags.reserve(c.elements.size());
+  for (const MshElement& e : c.elements) element_tags.push_back(e.tag);
+  std::sort(element_tags.begin(), element_tags.end());
+  const auto twice = std::adjacent_find(element_tags.begin(), element_tags.end());
+  if (twice != element_tags.end()) {
+    throw IoError(name + ": corrupt MSH file: element tag " + std::to_string(*twice) + " appears twice ($Elements)");
+  }
   for (const MshElement& e : c.elements) {
     for (std::int64_t v : e.nodes) {
       if (!c.nodes.count(v)) {

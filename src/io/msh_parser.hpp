@@ -6,7 +6,8 @@
 // tags ≥ 2³¹ or a negative physical dimension) and runs anything that does not start with
 // $MeshFormat as a .geo script (`Exit;`, `SystemCall`). This reader checks every count against
 // the bytes that remain, every tag's range and every element's nodes, and throws IoError naming
-// the file and the section; gmsh is still used to write, and the tests read gmsh's own files.
+// the file and the section (node and element tags as the file gives them). msh_writer.hpp
+// writes; the tests read gmsh's own files here and open ours with gmsh.
 
 #include <array>
 #include <cstdint>
