@@ -104,11 +104,16 @@ public:
     return static_cast<std::uint64_t>(n);
   }
 
-  // Minimum bytes of one item of `element`: a list takes at least its length.
+  // Minimum bytes of one item of `element`: a list takes at least its length, and a face's
+  // vertex list at least three indices too (fewer are refused).
   std::uint64_t min_bytes(const Element& element) const {
+    const bool ascii = m_encoding == Encoding::Ascii;
     std::uint64_t bytes = 0;
     for (const Property& p : element.properties) {
-      bytes += m_encoding == Encoding::Ascii ? 2 : size_of(p.list ? p.count_type : p.type);
+      bytes += ascii ? 2 : size_of(p.list ? p.count_type : p.type);
+      if (element.name == "face" && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+        bytes += 3 * (ascii ? 2 : size_of(p.type));
+      }
     }
     return bytes;
   }

@@ -93,7 +93,8 @@ TEST(SurfaceImport, BadFilesAreNamed) {
   write_file_atomically(dir / "noise.glb", std::string(2000, '\x5a'));
   expect(dir / "noise.glb", "IoError");
   write_file_atomically(dir / "lines.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\nl 2 3\n");
-  expect(dir / "lines.obj", "");  // either error class, as long as it is named
+  expect(dir / "lines.obj", "InvalidInput");  // well-formed, but only lines: nothing bounds a volume
+  EXPECT_NE(import_error(dir / "lines.obj").find("holds no faces"), std::string::npos);
   SurfaceMesh open = test::l_prism();
   open.faces.conservativeResize(19, 3);
   write_file_atomically(dir / "open.obj", test::to_obj(test::polygons_of(open)));
