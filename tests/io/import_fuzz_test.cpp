@@ -226,24 +226,34 @@ TEST(ImportFuzz, AssimpCrashesAreKeptAway) {
   for (int level = 0; level < 200000; ++level) deep_fbx += "A: {";
   test::write_test_file(dir / "deep.fbx", deep_fbx + std::string(200000, '}') + "\n" + fbx.substr(objects));
   // The same in binary FBX records (Blender's layout, version 7400): each record's end offset,
-  // no properties, a 1-byte name, then its child.
-  std::string binary_fbx("Kaydara FBX Binary  \0\x1a\0", 23);
-  test::put(binary_fbx, std::uint32_t{7400}, false);
-  const int levels = 200000;
-  const std::size_t record = 14, null_record = 13;
-  for (int level = 0; level < levels; ++level) {
-    const std::size_t end = 27 + record * static_cast<std::size_t>(levels) + null_record * static_cast<std::size_t>(levels - level);
-    test::put(binary_fbx, static_cast<std::uint32_t>(end), false);
-    test::put(binary_fbx, std::uint32_t{0}, false);
-    test::put(binary_fbx, std::uint32_t{0}, false);
-    binary_fbx += '\x01';
-    binary_fbx += 'A';
-  }
-  binary_fbx += std::string(null_record * static_cast<std::size_t>(levels) + null_record, '\0');
+  // no properties, a 1-byte name, then its child, closed by a null record.
+  auto nested_binary_fbx = [](std::size_t levels) {
+    std::string out("Kaydara FBX Binary  \0\x1a\0", 23);
+    test::put(out, std::uint32_t{7400}, false);
+    const std::size_t record = 14, null_record = 13;
+    for (std::size_t level = 0; level < levels; ++level) {
+      test::put(out, static_cast<std::uint32_t>(27 + record * levels + null_record * (levels - level)), false);
+      test::put(out, std::uint32_t{0}, false);
+      test::put(out, std::uint32_t{0}, false);
+      out += "\x01" "A";
+    }
+    return out + std::string(null_record * levels + null_record, '\0');
+  };
+  const std::string binary_fbx = nested_binary_fbx(200000);
   test::write_test_file(dir / "deep-binary.fbx", binary_fbx);
   for (const char* file : {"deep.gltf", "deep.fbx", "deep-binary.fbx"}) {
     EXPECT_EQ(raw_assimp_in_child(dir / file), 2) << file << ": assimp no longer crashes (the nesting guard may go)";
     refused(dir / file, "nest deeper than 64 levels");
+  }
+  // Nested 3 deep, the same records pass the check and reach assimp, which refuses them itself.
+  test::write_test_file(dir / "shallow-binary.fbx", nested_binary_fbx(3));
+  SurfaceRepairReport report;
+  try {
+    import_surface(dir / "shallow-binary.fbx", report);
+    ADD_FAILURE() << "an FBX without geometry was read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("nest deeper"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("corrupt FBX"), std::string::npos) << e.what();
   }
 
   // glTF 1.0: assimp's reader crashes on some corrupted GLB 1 files (none of glTF 2.0's did).
