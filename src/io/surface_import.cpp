@@ -33,12 +33,14 @@ Reader reader_for(const fs::path& path, const std::string& name) {
 SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
   const std::string name = path.string();
   require_nonempty_file(path);
+  // A device or FIFO (a link to /dev/zero named part.obj) would be read without end.
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw IoError(name + ": not a regular file");
   const Reader reader = reader_for(path, name);
   SurfaceMesh surface;
   if (reader == Reader::Assimp) {
     surface = io_detail::import_with_assimp(path, name);
   } else {
-    std::error_code ec;
     const auto size = fs::file_size(path, ec);
     if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
     const std::string bytes = read_file(path);

@@ -302,7 +302,7 @@ TEST(SurfaceImport, FaceWithAMissingVertexIsNamed) {
 
 // Formats that were never fuzzed are refused by name instead of being handed to assimp:
 // assimp's Collada reader hung on 3 of 400 corrupted files.
-TEST(SurfaceImport, UnfuzzedFormatsAreRefused) {
+TEST(SurfaceImport, UnfuzzedFormatsAndSpecialFilesAreRefused) {
   const fs::path dir = test::fresh_temp_dir("import-formats");
   for (const char* file : {"model.dae", "model.3ds", "model", "model.OBJ.bak"}) {
     write_file_atomically(dir / file, "solid x\nendsolid x\n");
@@ -310,6 +310,9 @@ TEST(SurfaceImport, UnfuzzedFormatsAreRefused) {
     EXPECT_NE(e.find("IoError: " + (dir / file).string() + ": unsupported surface format"), std::string::npos) << e;
     EXPECT_NE(e.find("OBJ, PLY, STL, OFF, glTF, GLB and FBX"), std::string::npos) << e;
   }
+  // A link to a device is never read (main read /dev/zero named zero.obj without end).
+  fs::create_symlink("/dev/zero", dir / "zero.obj");
+  EXPECT_EQ(import_error(dir / "zero.obj"), "IoError: " + (dir / "zero.obj").string() + ": not a regular file");
   // Extensions are matched without regard to case.
   write_file_atomically(dir / "upper.OBJ", test::to_obj(test::polygons_of(test::l_prism())));
   SurfaceRepairReport report;

@@ -20,7 +20,8 @@ inline constexpr const char* kSurfaceFormats = "OBJ, PLY, STL, OFF, glTF, GLB an
 /// definition; FBX files are converted to metres from their UnitScaleFactor; OBJ, PLY, STL and
 /// OFF carry no unit and are taken as metres).
 ///
-/// Throws IoError naming the file when it is missing, empty, unreadable, of another format, or
+/// Throws IoError naming the file when it is missing, empty, not a regular file (a device or
+/// FIFO would be read without end), unreadable, of another format, or
 /// corrupt: the message names the line (text formats) and the 1-based vertex, face or facet
 /// ("part.ply: vertex 17 has a non-finite coordinate", "part.obj:40: face 5 references vertex
 /// 12, but only 8 vertices come before it"). Counts in headers are checked against the file's
