@@ -1,60 +1,55 @@
 #include "fissure/io/surface_import.hpp"
 
+#include "assimp_import.hpp"
+#include "byte_cursor.hpp"
+#include "surface_readers.hpp"
+
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/base/memory.hpp"
 #include "fissure/mesh/tile.hpp"
-
-#include <assimp/Importer.hpp>
-#include <assimp/config.h>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
 
 namespace fissure {
 namespace fs = std::filesystem;
 
+namespace {
+
+enum class Reader { Obj, Ply, Stl, Off, Assimp };
+
+// By extension, case-insensitively: assimp's guess from the content would hand a file that is
+// not what its name says to a reader that was never fuzzed with it.
+Reader reader_for(const fs::path& path, const std::string& name) {
+  const std::string ext = io_detail::lower_ascii(path.extension().string());
+  if (ext == ".obj") return Reader::Obj;
+  if (ext == ".ply") return Reader::Ply;
+  if (ext == ".stl") return Reader::Stl;
+  if (ext == ".off") return Reader::Off;
+  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx") return Reader::Assimp;
+  throw IoError(name + ": unsupported surface format '" + ext.substr(0, 20) + "' (Fissure reads " + kSurfaceFormats + ")");
+}
+
+}  // namespace
+
 SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
   const std::string name = path.string();
   require_nonempty_file(path);
-
-  Assimp::Importer importer;
-  // Keep triangles only (points and lines bound no volume), and let FBX convert to metres.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  importer.SetPropertyBool(AI_CONFIG_FBX_CONVERT_TO_M, true);
-  const aiScene* scene = importer.ReadFile(
-      name, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                aiProcess_SortByPType);
-  if (!scene) {
-    throw IoError(name + ": cannot import: " + std::string(importer.GetErrorString()));
-  }
-  if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) throw IoError(name + ": the file is incomplete or corrupt");
-
+  // A device or FIFO (a link to /dev/zero named part.obj) would be read without end.
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw IoError(name + ": not a regular file");
+  const Reader reader = reader_for(path, name);
   SurfaceMesh surface;
-  surface.source_name = name;
-  Eigen::Index vertex_count = 0, face_count = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    vertex_count += mesh->mNumVertices;
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) face_count += mesh->mFaces[f].mNumIndices == 3;
-  }
-  if (face_count == 0) throw InvalidInput(name + ": holds no triangles");
-  surface.vertices.resize(vertex_count, 3);
-  surface.faces.resize(face_count, 3);
-  Eigen::Index v0 = 0, fi = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-      const aiVector3D& p = mesh->mVertices[v];
-      surface.vertices.row(v0 + v) << p.x, p.y, p.z;
+  if (reader == Reader::Assimp) {
+    surface = io_detail::import_with_assimp(path, name);
+  } else {
+    const auto size = fs::file_size(path, ec);
+    if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
+    const std::string bytes = read_file(path);
+    switch (reader) {
+      case Reader::Obj: surface = io_detail::read_obj(bytes, name); break;
+      case Reader::Ply: surface = io_detail::read_ply(bytes, name); break;
+      case Reader::Stl: surface = io_detail::read_stl(bytes, name); break;
+      default: surface = io_detail::read_off(bytes, name); break;
     }
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
-      const aiFace& face = mesh->mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      surface.faces.row(fi++) << static_cast<int>(v0 + face.mIndices[0]), static_cast<int>(v0 + face.mIndices[1]),
-          static_cast<int>(v0 + face.mIndices[2]);
-    }
-    v0 += mesh->mNumVertices;
   }
   return repair_surface(surface, report, options);
 }

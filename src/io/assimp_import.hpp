@@ -1,0 +1,23 @@
+#pragma once
+// Private to io: the formats Fissure reads through assimp 5.2.5 (glTF, GLB, FBX), with what
+// assimp returns checked before it is trusted.
+//
+// assimp runs aiProcess_ValidateDataStructure, and then every mesh is checked again here: null
+// arrays, indices out of range, non-finite vertices and counts that overflow an int are refused
+// with IoError naming the file and the mesh, so a corrupt file can never become an out-of-bounds
+// read in Fissure.
+
+#include "fissure/mesh/surface_mesh.hpp"
+
+#include <filesystem>
+#include <string>
+
+namespace fissure::io_detail {
+
+/// Every mesh of the file's scene, the file first checked by assimp_precheck.hpp, with node
+/// transforms applied, triangulated (points and lines dropped); FBX converted to metres. Not yet
+/// repaired. Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds
+/// no triangles.
+SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name);
+
+}  // namespace fissure::io_detail

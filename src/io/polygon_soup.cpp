@@ -1,0 +1,114 @@
+#include "polygon_soup.hpp"
+
+#include "polygon_triangulation.hpp"
+
+#include "fissure/base/memory.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace fissure::io_detail {
+namespace {
+
+// Vertex indices are int in SurfaceMesh.
+constexpr std::uint64_t kMaxVertices = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
+
+}  // namespace
+
+void PolygonSoup::declare(std::uint64_t vertices, std::uint64_t faces) {
+  if (vertices > kMaxVertices) {
+    throw IoError(m_name + ": " + std::to_string(vertices) + " vertices are more than Fissure can index (" +
+                  std::to_string(kMaxVertices) + ")");
+  }
+  // Each vertex is 3 doubles and each face at least one triangle of 3 ints, held twice while
+  // finish() copies them into the SurfaceMesh.
+  const double bytes = 2.0 * (24.0 * static_cast<double>(vertices) + 12.0 * static_cast<double>(faces));
+  require_memory(bytes, 0, m_name + ": reading " + std::to_string(vertices) + " vertices and " + std::to_string(faces) + " faces");
+  m_declared_vertices = vertices;
+  m_xyz.reserve(3 * vertices);
+  m_triangles.reserve(3 * faces);
+}
+
+void PolygonSoup::add_vertex(const ByteCursor& at, double x, double y, double z) {
+  const std::uint64_t number = vertex_count() + 1;
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) {
+    throw IoError(at.where() + "vertex " + std::to_string(number) + " has a non-finite coordinate");
+  }
+  if (number > kMaxVertices) throw IoError(m_name + ": more than " + std::to_string(kMaxVertices) + " vertices");
+  m_xyz.insert(m_xyz.end(), {x, y, z});
+}
+
+void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> indices) {
+  const std::uint64_t number = ++m_faces_read;
+  if (indices.size() < 3) {
+    throw IoError(at.where() + "face " + std::to_string(number) + " has " + std::to_string(indices.size()) +
+                  " vertices; a face needs at least 3");
+  }
+  const bool declared = m_declared_vertices != UINT64_MAX;
+  const std::uint64_t limit = declared ? m_declared_vertices : vertex_count();
+  m_scratch.clear();
+  bool known = true;
+  for (const std::int64_t written : indices) {
+    const std::int64_t index = written - m_index_base;
+    if (index < 0 || static_cast<std::uint64_t>(index) >= limit) {
+      std::string range = declared ? "the file has " + std::to_string(limit) + " vertices"
+                                   : "only " + std::to_string(limit) + " vertices come before it";
+      if (m_index_base == 0 && limit > 0) range += " (indices 0 to " + std::to_string(limit - 1) + ")";
+      throw IoError(at.where() + "face " + std::to_string(number) + " references vertex " +
+                    std::string(m_index_base == 0 ? "index " : "") + std::to_string(written) + ", but " + range);
+    }
+    m_scratch.push_back(static_cast<int>(index));
+    known = known && static_cast<std::uint64_t>(index) < vertex_count();
+  }
+  if (known) {
+    triangulate(m_scratch, number);
+  } else {
+    m_pending.insert(m_pending.end(), m_scratch.begin(), m_scratch.end());
+    m_pending_end.push_back(m_pending.size());
+    m_pending_number.push_back(number);
+  }
+}
+
+void PolygonSoup::triangulate(std::span<const int> face, std::uint64_t number) {
+  if (!triangulate_polygon(m_xyz, face, m_triangles)) {
+    throw IoError(m_name + ": face " + std::to_string(number) + " has " + std::to_string(face.size()) +
+                  " vertices and is not convex; Fissure triangulates non-convex faces of up to " +
+                  std::to_string(kMaxConcaveFaceVertices) + " vertices");
+  }
+}
+
+SurfaceMesh PolygonSoup::finish(const char* format) {
+  if (m_declared_vertices != UINT64_MAX && vertex_count() != m_declared_vertices) {
+    throw IoError(m_name + ": the header declares " + std::to_string(m_declared_vertices) + " vertices, the file holds " +
+                  std::to_string(vertex_count()));
+  }
+  std::size_t begin = 0;
+  for (std::size_t k = 0; k < m_pending_end.size(); ++k) {
+    const std::span<const int> face(m_pending.data() + begin, m_pending_end[k] - begin);
+    for (const int v : face) {
+      if (static_cast<std::uint64_t>(v) >= vertex_count()) {
+        throw IoError(m_name + ": face " + std::to_string(m_pending_number[k]) + " references vertex " +
+                      std::string(m_index_base == 0 ? "index " : "") + std::to_string(v + m_index_base) +
+                      ", which the file does not define");
+      }
+    }
+    triangulate(face, m_pending_number[k]);
+    begin = m_pending_end[k];
+  }
+  if (m_triangles.empty()) throw InvalidInput(m_name + ": holds no faces (is it really " + std::string(format) + "?)");
+
+  SurfaceMesh surface;
+  surface.source_name = m_name;
+  surface.vertices.resize(static_cast<Eigen::Index>(vertex_count()), 3);
+  for (Eigen::Index v = 0; v < surface.vertices.rows(); ++v) {
+    for (int axis = 0; axis < 3; ++axis) surface.vertices(v, axis) = m_xyz[3 * static_cast<std::size_t>(v) + static_cast<std::size_t>(axis)];
+  }
+  std::vector<double>().swap(m_xyz);
+  surface.faces.resize(static_cast<Eigen::Index>(m_triangles.size() / 3), 3);
+  for (Eigen::Index f = 0; f < surface.faces.rows(); ++f) {
+    for (int k = 0; k < 3; ++k) surface.faces(f, k) = m_triangles[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k)];
+  }
+  return surface;
+}
+
+}  // namespace fissure::io_detail

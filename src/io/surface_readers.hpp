@@ -1,0 +1,37 @@
+#pragma once
+// Private to io: Fissure's strict readers of the simple surface formats, OBJ, PLY (ASCII and
+// binary, either byte order), STL (ASCII and binary) and OFF.
+//
+// assimp 5.2.5 crashes on truncated PLY and OFF (a SIGSEGV in its binary PLY reader, an
+// ai_assert abort in its triangulation), hangs or allocates without bound when a header claims
+// 2·10⁹ vertices, and drops NaN vertices without a word (measured: docs/architecture.md, "Surface
+// import"). These readers check every count against the bytes that remain before allocating,
+// every index against the vertex count and every coordinate for finiteness, and throw IoError
+// naming the file, the line (in text) and the 1-based vertex, face or facet. Each takes the whole
+// file's bytes; `name` prefixes every message. The result is not yet repaired.
+
+#include "fissure/mesh/surface_mesh.hpp"
+
+#include <string>
+#include <string_view>
+
+namespace fissure::io_detail {
+
+/// Wavefront OBJ: `v` and `f` lines (`f 1/2/3 …`, negative indices count back from the last
+/// vertex); points, lines, texture coordinates, normals, groups and materials are ignored.
+SurfaceMesh read_obj(std::string_view bytes, const std::string& name);
+
+/// Stanford PLY 1.0, `ascii`, `binary_little_endian` or `binary_big_endian`: the `vertex`
+/// element's x, y, z and the `face` element's `vertex_indices` (or `vertex_index`) list, of any
+/// PLY scalar type; other elements and properties are read past.
+SurfaceMesh read_ply(std::string_view bytes, const std::string& name);
+
+/// STL, binary (when the size is 84 + 50·count or the file does not start with "solid") or
+/// ASCII; each facet brings its own three vertices, joined later by repair_surface.
+SurfaceMesh read_stl(std::string_view bytes, const std::string& name);
+
+/// Object File Format (OFF, COFF, NOFF, CNOFF, STOFF and the like; the keyword may be omitted):
+/// the first three numbers of each vertex line, then faces "n i₁ … iₙ [colour]".
+SurfaceMesh read_off(std::string_view bytes, const std::string& name);
+
+}  // namespace fissure::io_detail
