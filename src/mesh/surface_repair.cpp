@@ -87,6 +87,7 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
 
   // 2. Drop degenerate and duplicate faces.
   std::vector<std::array<int, 3>> faces;
+  std::vector<int> face_origin;  // input face index of every kept face, for messages
   std::map<std::array<int, 3>, int> seen;
   int degenerate = 0, duplicate = 0;
   const double min_twice_area = std::pow(options.merge_tolerance * diagonal, 2);
@@ -105,6 +106,7 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
       continue;
     }
     faces.push_back(face);
+    face_origin.push_back(static_cast<int>(f));
   }
   if (degenerate) report.actions.push_back("removed " + std::to_string(degenerate) + " degenerate faces");
   if (duplicate) report.actions.push_back("removed " + std::to_string(duplicate) + " duplicate faces");
@@ -125,6 +127,36 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
   }
   for (auto& face : faces)
     for (int& v : face) v = new_index[static_cast<std::size_t>(v)];
+  // Messages name vertices and faces by the user's 1-based input numbers (what OBJ and PLY
+  // tools show), not by the indices after merging and compaction. A merged vertex is named by
+  // its lowest input number (its representative) and the others it absorbed.
+  std::vector<int> input_vertex(static_cast<std::size_t>(used));
+  for (Eigen::Index i = 0; i < input.vertex_count(); ++i) {
+    const int slot = new_index[static_cast<std::size_t>(i)];
+    if (slot >= 0) input_vertex[static_cast<std::size_t>(slot)] = static_cast<int>(i);
+  }
+  auto vertex_name = [&](int v) {
+    const int original = input_vertex[static_cast<std::size_t>(v)];
+    std::string text = "vertex " + std::to_string(original + 1);
+    std::vector<int> absorbed;
+    for (std::size_t i = 0; i < representative.size(); ++i) {
+      if (representative[i] == original && static_cast<int>(i) != original) absorbed.push_back(static_cast<int>(i) + 1);
+    }
+    if (!absorbed.empty()) {
+      text += " (merged with " + std::to_string(absorbed.front());
+      if (absorbed.size() > 1) text += " and " + std::to_string(absorbed.size() - 1) + " more";
+      text += ")";
+    }
+    return text;
+  };
+  auto face_list = [&](const std::vector<int>& kept) {
+    std::string text = kept.size() == 1 ? "face " : "faces ";
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      if (i > 0) text += i + 1 == kept.size() ? " and " : ", ";
+      text += std::to_string(face_origin[static_cast<std::size_t>(kept[i])] + 1);
+    }
+    return text;
+  };
 
   // 3. Edges: every undirected edge must have exactly two faces.
   std::map<std::pair<int, int>, std::vector<int>> edge_faces;
@@ -140,14 +172,15 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
     if (list.size() > 2 && overfull++ == 0) first_overfull = edge;
   }
   if (border > 0) {
-    throw InvalidInput(name + ": open: " + std::to_string(border) + " border edges (e.g. between vertices " +
-                       std::to_string(first_border.first) + " and " + std::to_string(first_border.second) +
-                       "); Fissure needs a closed surface");
+    throw InvalidInput(name + ": open: " + std::to_string(border) + " border edges (e.g. the edge between " +
+                       vertex_name(first_border.first) + " and " + vertex_name(first_border.second) +
+                       ", which only " + face_list(edge_faces[first_border]) + " has); Fissure needs a closed surface");
   }
   if (overfull > 0) {
     throw InvalidInput(name + ": non-manifold: " + std::to_string(overfull) +
-                       " edges shared by more than two faces (e.g. between vertices " +
-                       std::to_string(first_overfull.first) + " and " + std::to_string(first_overfull.second) + ")");
+                       " edges shared by more than two faces (e.g. the edge between " + vertex_name(first_overfull.first) +
+                       " and " + vertex_name(first_overfull.second) + ", shared by " +
+                       face_list(edge_faces[first_overfull]) + ")");
   }
 
   // 4. Non-manifold vertices: the faces around a vertex must form one fan.
@@ -178,8 +211,11 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
         }
       }
       if (count != around.size()) {
-        throw InvalidInput(name + ": non-manifold vertex " + std::to_string(v) +
-                           " (two surface sheets touch at a point)");
+        // One face of the fan that was reached and one that was not: two sheets, one of each.
+        std::size_t other = 0;
+        while (reached[other]) ++other;
+        throw InvalidInput(name + ": non-manifold " + vertex_name(v) + ": two surface sheets touch only there (" +
+                           face_list({around[0]}) + " on one, " + face_list({around[other]}) + " on the other)");
       }
     }
   }
@@ -210,7 +246,8 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
             }
             stack.push_back(g);
           } else if (same_direction) {
-            throw InvalidInput(name + ": non-orientable surface (a Moebius-like shell)");
+            throw InvalidInput(name + ": non-orientable surface (a Moebius-like shell: " +
+                               face_list({static_cast<int>(f), g_index}) + " cannot both face outward)");
           }
         }
       }

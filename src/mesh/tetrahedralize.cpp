@@ -2,7 +2,12 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/memory.hpp"
+#include "fissure/base/number_text.hpp"
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
@@ -10,11 +15,15 @@
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
+#include <CGAL/perturb_mesh_3.h>
 
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <unordered_map>
 
@@ -27,24 +36,88 @@ using Domain = CGAL::Polyhedral_mesh_domain_with_features_3<Kernel, Polyhedron>;
 using Triangulation = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
 using Complex = CGAL::Mesh_complex_3_in_triangulation_3<Triangulation, Domain::Corner_index, Domain::Curve_index>;
 using Criteria = CGAL::Mesh_criteria_3<Triangulation>;
+using AabbTree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, CGAL::AABB_face_graph_triangle_primitive<Polyhedron>>>;
 
 // Mean tet volume as a fraction of cell_size³, measured on bulky boxes (0.3 m cube, 0.7K–70K
 // tets: 0.22 ± 0.01). Thin plates deviate (the thickness, not the size bound, sets the tets), so
 // this is only the first guess; misses are corrected by re-meshing (tests/bench/bench_mesh.cpp).
 constexpr double kVolumePerCellSizeCubed = 0.22;
 constexpr int kMaxAttempts = 3;
+// Extra attempts, each with a smaller size bound, after a mesh that does not fill its surface.
+constexpr int kMaxRefills = 4;
+constexpr double kRefillShrink = 0.6;
+// Tets per triangulation vertex in the finished mesh (24K-tet tile: 24016 / 4647 = 5.2); turns
+// the vertex count CGAL has reached into a fraction of the expected work.
+constexpr double kTetsPerVertex = 5.2;
+// Peak memory (see tetrahedralize_memory_estimate), measured with tests/bench/peak_rss on
+// `fissure mesh tile:1,1,1 --tets N`: 111 MB at 24K tets, 159 MB at 100K, 289 MB at 300K (the
+// 1 × 1 × 0.05 m tile at 100K: 164 MB), 104 MB for a 64-tet mesh. The slope is 630–650 bytes per
+// tet; 700 keeps a margin, and the fixed part is the process with its libraries.
+constexpr double kTetrahedralizeBytesPerTet = 700.0;
+constexpr double kTetrahedralizeFixedBytes = 100e6;
+// Largest size bound, in units of the thickness 2V/A, used for a body: on the 1 × 1 × 0.05 m
+// tile a bound of 1.5 × 2V/A still fills the plate and 2 × leaves it hollow (measured, 500 tets
+// asked for); 1.25 keeps a margin, and the check after every attempt catches what it misses.
+constexpr double kMaxSizePerThickness = 1.25;
+// A request whose size bound must shrink to fit the body by more than this many tets (relative
+// and absolute part) is refused up front instead of running for minutes on a much larger mesh.
+constexpr double kMaxTetsOverTarget = 10.0;
+constexpr double kMaxExtraTets = 1e5;
 
-Polyhedron to_polyhedron(const SurfaceMesh& surface) {
+// Watches a running refinement from inside CGAL: the size functors below are called for every
+// facet and cell CGAL tests, so they are where the caller's CancelToken is read (and copied into
+// CGAL's own stop flag, Mesher_3's `pointer_to_stop_atomic_boolean`) and where progress is
+// reported, at most five times per second.
+class RefinementWatch {
+public:
+  RefinementWatch(ProgressSink& sink, const CancelToken* cancel, const Triangulation& triangulation,
+                  double expected_vertices, double from, double to)
+      : m_sink(sink), m_cancel(cancel), m_triangulation(triangulation), m_expected_vertices(expected_vertices),
+        m_from(from), m_to(to), m_last(std::chrono::steady_clock::now()) {}
+
+  std::atomic<bool>* stop_flag() { return &m_stop; }
+  void poll() {
+    if (m_cancel && m_cancel->cancelled()) m_stop.store(true, std::memory_order_release);
+    if (++m_calls % 1024 != 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - m_last < std::chrono::milliseconds(200)) return;
+    m_last = now;
+    const double done = std::min(0.95, static_cast<double>(m_triangulation.number_of_vertices()) / m_expected_vertices);
+    m_sink.report("tetrahedralize", m_from + (m_to - m_from) * done);
+  }
+
+private:
+  ProgressSink& m_sink;
+  const CancelToken* m_cancel;
+  const Triangulation& m_triangulation;
+  double m_expected_vertices, m_from, m_to;
+  std::atomic<bool> m_stop{false};
+  std::uint64_t m_calls = 0;
+  std::chrono::steady_clock::time_point m_last;
+};
+
+// A uniform size bound that lets the watch run each time CGAL asks for it.
+struct WatchedSize {
+  double size;
+  RefinementWatch* watch;
+  template <typename Index>
+  double operator()(const Kernel::Point_3&, int, const Index&) const {
+    watch->poll();
+    return size;
+  }
+};
+
+Polyhedron to_polyhedron(const SurfaceMesh& surface, double scale) {
   Polyhedron p;
   std::vector<Polyhedron::Vertex_index> v(static_cast<std::size_t>(surface.vertex_count()));
   for (Eigen::Index i = 0; i < surface.vertex_count(); ++i) {
-    v[static_cast<std::size_t>(i)] =
-        p.add_vertex(Kernel::Point_3(surface.vertices(i, 0), surface.vertices(i, 1), surface.vertices(i, 2)));
+    v[static_cast<std::size_t>(i)] = p.add_vertex(
+        Kernel::Point_3(scale * surface.vertices(i, 0), scale * surface.vertices(i, 1), scale * surface.vertices(i, 2)));
   }
   for (Eigen::Index f = 0; f < surface.face_count(); ++f) {
     const auto face = p.add_face(v[surface.faces(f, 0)], v[surface.faces(f, 1)], v[surface.faces(f, 2)]);
     if (face == Polyhedron::null_face()) {
-      throw InvalidInput(surface.source_name + ": face " + std::to_string(f) +
+      throw InvalidInput(surface.source_name + ": face " + std::to_string(f + 1) +
                          " cannot be added (non-manifold or inconsistently oriented surface; repair it first)");
     }
   }
@@ -54,19 +127,32 @@ Polyhedron to_polyhedron(const SurfaceMesh& surface) {
   return p;
 }
 
-TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& options, double size,
-                  const std::string& source) {
+// One CGAL run at size bound `size` on the scaled `polyhedron`; the nodes come back multiplied by
+// `unscale` (a power of two, so exactly). Returns an empty mesh when `cancel` stopped it.
+TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& options, double size, double expected_tets,
+                  double unscale, const std::string& source, ProgressSink& sink, const CancelToken* cancel, double from, double to) {
   using namespace CGAL::parameters;
   CGAL::get_default_random() = CGAL::Random(options.seed);
   Domain domain(polyhedron);
   domain.detect_features(options.feature_angle_deg);
-  const Criteria criteria(edge_size = size, facet_angle = options.facet_angle_deg, facet_size = size,
+  Complex c3t3;
+  const double expected_vertices = std::max(1.0, expected_tets / kTetsPerVertex);
+  RefinementWatch watch(sink, cancel, c3t3.triangulation(), expected_vertices, from, from + 0.8 * (to - from));
+  const WatchedSize sized{size, &watch};
+  const Criteria criteria(edge_size = size, facet_angle = options.facet_angle_deg, facet_size = sized,
                           facet_distance = size / 4.0,
-                          cell_radius_edge_ratio = options.cell_radius_edge_ratio, cell_size = size);
-  const Complex c3t3 = CGAL::make_mesh_3<Complex>(
-      domain, criteria, no_lloyd(), no_odt(),
-      perturb(time_limit = options.perturb_time_limit_s, sliver_bound = options.sliver_bound_deg),
-      exude(time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg));
+                          cell_radius_edge_ratio = options.cell_radius_edge_ratio, cell_size = sized);
+  CGAL::make_mesh_3_bp(c3t3, domain, criteria, no_lloyd(), no_odt(), no_perturb(), no_exude(),
+                       mesh_3_options(pointer_to_stop_atomic_boolean = watch.stop_flag()));
+  if (cancel && cancel->cancelled()) return TetMesh();
+  // Sliver removal, bounded by its time limits. Neither pass reads a stop flag: a cancel that
+  // arrives during them is honoured when they end.
+  sink.report("tetrahedralize", from + 0.8 * (to - from));
+  CGAL::perturb_mesh_3(c3t3, domain, time_limit = options.perturb_time_limit_s, sliver_bound = options.sliver_bound_deg);
+  if (cancel && cancel->cancelled()) return TetMesh();
+  sink.report("tetrahedralize", from + 0.9 * (to - from));
+  CGAL::exude_mesh_3(c3t3, time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg);
+  if (cancel && cancel->cancelled()) return TetMesh();
 
   // Nodes numbered in order of first use by the cells, cells in the complex's order: both are
   // fixed by the (deterministic) triangulation.
@@ -80,7 +166,8 @@ TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& opt
       const auto [it, inserted] = index.try_emplace(vh, static_cast<int>(points.size()));
       if (inserted) {
         const auto& p = vh->point();
-        points.emplace_back(CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z()));
+        points.emplace_back(unscale * CGAL::to_double(p.x()), unscale * CGAL::to_double(p.y()),
+                            unscale * CGAL::to_double(p.z()));
       }
       tet[k] = it->second;
     }
@@ -101,11 +188,79 @@ TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& opt
   }
 }
 
+// Why `mesh` does not fill the surface (`tree` holds it multiplied by `scale`), or "" when it does. The
+// boundary nodes CGAL makes are intersections with the input triangles, so they lie on the input
+// surface up to double round-off; `on_surface` (1e-9 of the diagonal) is far above that and far
+// below any real gap. The boundary is then a triangulation inscribed in the input: where a facet
+// lies in one input triangle's plane it reproduces it exactly, and only facets that cut across an
+// unprotected input edge (a curved region) may deviate, by at most the facet-distance criterion
+// `facet_distance`. So the volume may differ by Σ area·facet_distance over those facets, and the
+// boundary area may exceed the input's only by round-off there and elsewhere by the same
+// facets' slope (≤ 5 %: facet-distance a quarter of the size bound keeps them within 15° of the
+// surface, 1/cos 15° = 1.035). A hollow mesh fails both: its cavity walls add area that is on no
+// input triangle.
+std::string fill_problem(const TetMesh& mesh, const AabbTree& tree, double scale, double volume, double area,
+                         const Eigen::AlignedBox3d& box, double facet_distance) {
+  const auto distance = [&](const Eigen::Vector3d& p) {
+    return std::sqrt(tree.squared_distance(Kernel::Point_3(scale * p.x(), scale * p.y(), scale * p.z()))) / scale;
+  };
+  const double on_surface = 1e-9 * box.diagonal().norm();
+  double mesh_area = 0.0, curved_area = 0.0, farthest_node = 0.0;
+  int farthest = -1;
+  std::vector<char> seen(static_cast<std::size_t>(mesh.node_count()), 0);
+  for (const BoundaryFace& f : mesh.boundary_faces()) {
+    mesh_area += f.area;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (int v : f.nodes) {
+      const Eigen::Vector3d p = mesh.nodes().row(v).transpose();
+      centroid += p / 3.0;
+      if (seen[static_cast<std::size_t>(v)]) continue;
+      seen[static_cast<std::size_t>(v)] = 1;
+      const double d = distance(p);
+      if (d > farthest_node) {
+        farthest_node = d;
+        farthest = v;
+      }
+    }
+    if (distance(centroid) > on_surface) curved_area += f.area;
+  }
+  const auto figures = [&](double value, double expected, const char* unit) {
+    return format_number(value) + " " + unit + " instead of " + format_number(expected) + " " + unit + " (" +
+           format_number(100.0 * (value / expected - 1.0), 3) + " %)";
+  };
+  if (farthest_node > on_surface) {
+    return "boundary " + mesh.node_label(farthest) + " lies " + format_number(farthest_node) +
+           " m off the surface";
+  }
+  const double mesh_volume = mesh.total_volume();
+  // Round-off of summing the tet volumes: below 1e-9 relative up to 5e7 tets.
+  const double volume_tolerance = 1e-9 * volume + curved_area * facet_distance;
+  if (std::abs(mesh_volume - volume) > volume_tolerance) {
+    return "the mesh holds " + figures(mesh_volume, volume, "m^3") + " of volume (tolerance " +
+           format_number(100.0 * volume_tolerance / volume, 3) + " %)";
+  }
+  if (mesh_area > area * (1.0 + 1e-9) + 0.05 * curved_area) {
+    return "the mesh boundary has " + figures(mesh_area, area, "m^2") + " of area (inner walls: it is hollow)";
+  }
+  Eigen::AlignedBox3d mesh_box;
+  for (Eigen::Index i = 0; i < mesh.node_count(); ++i) mesh_box.extend(mesh.nodes().row(i).transpose());
+  const double box_tolerance = on_surface + facet_distance;
+  if ((mesh_box.min() - box.min()).cwiseAbs().maxCoeff() > box_tolerance ||
+      (mesh_box.max() - box.max()).cwiseAbs().maxCoeff() > box_tolerance) {
+    return "the mesh's bounding box differs from the surface's by " +
+           format_number(std::max((mesh_box.min() - box.min()).cwiseAbs().maxCoeff(),
+                                  (mesh_box.max() - box.max()).cwiseAbs().maxCoeff())) + " m";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::vector<std::string> TetrahedralizeOptions::problems() const {
   std::vector<std::string> out;
-  if (target_tets < 10 || target_tets > 50'000'000) out.push_back("target_tets " + std::to_string(target_tets) + " is outside [10, 5e7]");
+  if (target_tets < 10 || target_tets > 50'000'000) {
+    out.push_back("target_tets " + format_number(target_tets) + " is outside [10, 5e7]");
+  }
   if (!(count_tolerance > 0.0 && count_tolerance < 1.0)) out.push_back("count_tolerance must be in (0, 1)");
   if (!(facet_angle_deg > 0.0 && facet_angle_deg <= 30.0)) out.push_back("facet_angle_deg must be in (0, 30] (CGAL termination)");
   if (!(cell_radius_edge_ratio >= 2.0)) out.push_back("cell_radius_edge_ratio must be >= 2 (CGAL termination)");
@@ -118,17 +273,33 @@ std::vector<std::string> TetrahedralizeOptions::problems() const {
 
 void TetrahedralizeOptions::validate() const { throw_if_problems("tetrahedralize", problems()); }
 
+double tetrahedralize_memory_estimate(int target_tets) {
+  return kTetrahedralizeBytesPerTet * target_tets + kTetrahedralizeFixedBytes;
+}
+
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report, ProgressSink* progress, const CancelToken* cancel) {
   options.validate();
   const std::string source = surface.source_name.empty() ? std::string("surface") : surface.source_name;
+  require_memory(tetrahedralize_memory_estimate(options.target_tets), options.memory_limit_bytes,
+                 "tetrahedralize: " + format_number(options.target_tets) + " tets");
   if (surface.face_count() < 4) throw InvalidInput(source + ": the surface has fewer than 4 faces");
   if (!surface.vertices.allFinite()) throw InvalidInput(source + ": a vertex has a non-finite coordinate");
   const double volume = signed_volume(surface);
   if (!(volume > 0.0)) {
     throw InvalidInput(source + ": the surface encloses no positive volume (open or inside out?)");
   }
-  const Polyhedron polyhedron = to_polyhedron(surface);
+  // Mesh a copy scaled by a power of two (exact both ways) to a diagonal in [1, 2): CGAL's
+  // predicates are exact, but some of Mesh_3's tolerances are absolute, so a 1 µm body and a
+  // 1 km one are meshed alike.
+  const Eigen::Vector3d lo = surface.vertices.colwise().minCoeff(), hi = surface.vertices.colwise().maxCoeff();
+  const double scale = std::ldexp(1.0, -std::ilogb((hi - lo).norm()));
+  const double unscale = 1.0 / scale;
+  const Polyhedron polyhedron = to_polyhedron(surface, scale);
+  AabbTree tree(faces(polyhedron).first, faces(polyhedron).second, polyhedron);
+  tree.accelerate_distance_queries();
+  const double area = surface_area(surface);
+  const Eigen::AlignedBox3d box(lo, hi);
   NullProgress null_progress;
   ProgressSink& sink = progress ? *progress : null_progress;
 
@@ -138,40 +309,83 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
   // Tet count N(h) ~ h^-p: p = 3 in bulk, less in plates a few elements thick. The first miss
   // is corrected with p = 3, later ones with p fitted on the last two attempts (secant in log-log).
   double cell_size = std::cbrt(volume / (kVolumePerCellSizeCubed * options.target_tets));
+  // Size bound the body can hold: a Delaunay cell bigger than the body's thickness has its
+  // circumcentre outside a plate and is dropped, which leaves the mesh hollow (a 1 × 1 × 0.05 m
+  // tile at 500 tets kept 0.018 of its 0.05 m³). 2V/A is the thickness of a plate (a cube of side
+  // a gives a/3).
+  const double thickness = 2.0 * volume / area;
+  double size_limit = kMaxSizePerThickness * thickness;
+  if (cell_size > size_limit) {
+    const double needed = volume / (kVolumePerCellSizeCubed * size_limit * size_limit * size_limit);
+    if (needed > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) {
+      throw InvalidInput(source + ": " + format_number(options.target_tets) + " tets would be about " +
+                         format_number(cell_size, 3) + " m across, too coarse for a body " + format_number(thickness, 3) +
+                         " m thick (2V/A), which they would leave hollow; it needs a size bound of at most " +
+                         format_number(size_limit, 3) + " m, at least about " + format_number(needed, 2) +
+                         " tets: ask for that many");
+    }
+    cell_size = size_limit;
+  }
   double previous_size = 0.0, previous_count = 0.0;
   TetMesh mesh;
-  for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
+  int count_attempts = 0, refills = 0;
+  std::string problem;
+  for (int attempt = 0;; ++attempt) {
     if (cancel) cancel->throw_if_cancelled();
-    sink.report("tetrahedralize", static_cast<double>(attempt) / kMaxAttempts);
-    mesh = mesh_once(polyhedron, options, cell_size, source);
+    const double from = 1.0 - std::ldexp(1.0, -attempt), to = 1.0 - std::ldexp(1.0, -attempt - 1);
+    sink.report("tetrahedralize", from);
+    const double expected = volume / (kVolumePerCellSizeCubed * cell_size * cell_size * cell_size);
+    mesh = mesh_once(polyhedron, options, scale * cell_size, expected, unscale, source, sink, cancel, from, to);
+    if (cancel) cancel->throw_if_cancelled();
     r.attempts = attempt + 1;
     r.cell_size = cell_size;
+    problem = fill_problem(mesh, tree, scale, volume, area, box, cell_size / 4.0);
+    if (!problem.empty()) {
+      // A smaller bound means more tets: never more than kMaxTetsOverTarget times the request
+      // (plus kMaxExtraTets) nor more than memory allows.
+      const double next = kRefillShrink * cell_size;
+      const double next_tets = volume / (kVolumePerCellSizeCubed * next * next * next);
+      if (refills++ == kMaxRefills || next_tets > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) break;
+      require_memory(tetrahedralize_memory_estimate(static_cast<int>(next_tets)), options.memory_limit_bytes,
+                     "tetrahedralize: re-meshing " + source + " with " + format_number(next_tets, 3) + " tets");
+      size_limit = kRefillShrink * cell_size;
+      cell_size = size_limit;
+      previous_count = 0.0;
+      continue;
+    }
     const double count = mesh.tet_count();
-    if (std::abs(count / options.target_tets - 1.0) <= options.count_tolerance) break;
+    if (std::abs(count / options.target_tets - 1.0) <= options.count_tolerance || ++count_attempts == kMaxAttempts) break;
     double p = 3.0;
     if (previous_count > 0.0 && previous_count != count) {
       p = std::clamp(-std::log(count / previous_count) / std::log(cell_size / previous_size), 1.0, 4.0);
     }
     previous_size = cell_size;
     previous_count = count;
-    cell_size *= std::pow(count / options.target_tets, 1.0 / p);
+    const double next = std::min(size_limit, cell_size * std::pow(count / options.target_tets, 1.0 / p));
+    // Too many tets at the largest bound the body holds: a coarser mesh would be hollow.
+    if (next == cell_size) break;
+    cell_size = next;
+  }
+  if (!problem.empty()) {
+    throw NumericalFailure(source + ": " + problem + " after " + format_number(r.attempts) +
+                           " attempts (last size bound " + format_number(r.cell_size) + " m)");
   }
   sink.report("tetrahedralize", 1.0);
-  if (cancel) cancel->throw_if_cancelled();
 
   r.quality = mesh.quality();
   if (r.quality.min_dihedral_deg < options.refuse_below_dihedral_deg) {
-    throw NumericalFailure(source + ": the mesh has a sliver (tet " + std::to_string(r.quality.worst_dihedral_tet) +
-                           ", min dihedral " + std::to_string(r.quality.min_dihedral_deg) + " deg) after sliver removal");
+    throw NumericalFailure(source + ": the mesh has a sliver (" + mesh.tet_label(r.quality.worst_dihedral_tet) +
+                           ", min dihedral " + format_number(r.quality.min_dihedral_deg, 3) +
+                           " deg) after sliver removal");
   }
   if (r.quality.min_dihedral_deg < 5.0) {
-    r.warnings.push_back("min dihedral angle " + std::to_string(r.quality.min_dihedral_deg) +
+    r.warnings.push_back("min dihedral angle " + format_number(r.quality.min_dihedral_deg, 3) +
                          " deg is below 5 deg: stresses in that tet are unreliable");
   }
   const double ratio = static_cast<double>(mesh.tet_count()) / options.target_tets;
   if (std::abs(ratio - 1.0) > options.count_tolerance) {
-    r.warnings.push_back(std::to_string(mesh.tet_count()) + " tets instead of the " +
-                         std::to_string(options.target_tets) + " asked for");
+    r.warnings.push_back(format_number(mesh.tet_count()) + " tets instead of the " + format_number(options.target_tets) +
+                         " asked for");
   }
   return mesh;
 }

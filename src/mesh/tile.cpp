@@ -1,9 +1,8 @@
 #include "fissure/mesh/tile.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 
-#include <charconv>
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -14,25 +13,12 @@ bool is_tile_spec(std::string_view input) { return input.starts_with("tile:"); }
 TileSpec parse_tile_spec(std::string_view spec) {
   const std::string text(spec);
   if (!is_tile_spec(spec)) throw InvalidInput("'" + text + "' is not a tile spec (tile:W,H,T in metres)");
-  std::vector<double> values;
-  std::size_t pos = 5;
-  while (pos <= spec.size()) {
-    const std::size_t comma = std::min(spec.find(',', pos), spec.size());
-    const std::string item(spec.substr(pos, comma - pos));
-    double v = 0.0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), v);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size()) {
-      throw InvalidInput("tile '" + text + "': '" + item + "' is not a number (expected tile:W,H,T in metres)");
-    }
-    values.push_back(v);
-    pos = comma + 1;
-  }
-  if (values.size() != 3) {
-    throw InvalidInput("tile '" + text + "': expected 3 sizes W,H,T, got " + std::to_string(values.size()));
-  }
-  for (double v : values) {
-    if (!std::isfinite(v) || v <= 0.0) {
-      throw InvalidInput("tile '" + text + "': sizes must be positive and finite");
+  const std::vector<double> values =
+      parse_number_list(spec.substr(5), "tile '" + text + "'", 3, "W,H,T (metres)");
+  static constexpr const char* kNames[] = {"width W", "height H", "thickness T"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!(values[i] > 0.0)) {
+      throw InvalidInput("tile '" + text + "': " + kNames[i] + " " + format_number(values[i]) + " must be positive");
     }
   }
   return TileSpec{values[0], values[1], values[2]};
@@ -40,8 +26,8 @@ TileSpec parse_tile_spec(std::string_view spec) {
 
 SurfaceMesh make_tile_surface(const TileSpec& tile) {
   SurfaceMesh s;
-  s.source_name = "tile:" + std::to_string(tile.width) + "," + std::to_string(tile.height) + "," +
-                  std::to_string(tile.thickness);
+  s.source_name = "tile:" + format_number(tile.width) + "," + format_number(tile.height) + "," +
+                  format_number(tile.thickness);
   const double x = tile.width / 2, y = tile.height / 2, z = tile.thickness;
   s.vertices.resize(8, 3);
   // Vertex i has bit 0 → +x, bit 1 → +y, bit 2 → top.

@@ -98,5 +98,40 @@ TEST(SurfaceRepair, RefusesWhatIsUnsafe) {
   EXPECT_NE(refusal(empty).find("empty.obj: the surface has no triangles"), std::string::npos);
 }
 
+
+// Refusals name vertices and faces by the user's 1-based input numbers. Main named them by
+// their 0-based index after merging and compaction ("between vertices 1 and 3"), which is not
+// what the file or any viewer shows.
+TEST(SurfaceRepair, RefusalsNameInputVerticesAndFaces) {
+  // An unused vertex first shifts every input number by one; compaction removes it again.
+  const SurfaceMesh tile = make_tile_surface({1, 1, 1});
+  SurfaceMesh open;
+  open.source_name = "open.obj";
+  open.vertices.resize(9, 3);
+  open.vertices << Eigen::RowVector3d(9, 9, 9), tile.vertices;
+  open.faces = (tile.faces.topRows(10).array() + 1).matrix();  // the right side is missing
+  EXPECT_NE(refusal(open).find("open.obj: open: 4 border edges (e.g. the edge between vertex 3 and vertex 5, "
+                               "which only face 2 has)"),
+            std::string::npos)
+      << refusal(open);
+
+  // Two boxes sharing the vertical edge x = y = 0.5: input vertices 9 and 13 (1-based) of the
+  // second box are welded onto 4 and 8 of the first.
+  const std::string edge = refusal(two_boxes(1.0, 1.0));
+  EXPECT_NE(edge.find("non-manifold: 1 edges shared by more than two faces (e.g. the edge between vertex 4 "
+                      "(merged with 9) and vertex 8 (merged with 13), shared by faces 8, 12, 17 and 21)"),
+            std::string::npos)
+      << edge;
+
+  // Two boxes touching at one corner (0.5, 0.5, 1): vertex 8 of the first, 9 of the second.
+  SurfaceMesh corner = two_boxes(1.0, 1.0);
+  corner.vertices.bottomRows(8).col(2).array() += 1.0;
+  const std::string vertex = refusal(corner);
+  EXPECT_NE(vertex.find("non-manifold vertex 8 (merged with 9): two surface sheets touch only there (face 4 on "
+                        "one, face 13 on the other)"),
+            std::string::npos)
+      << vertex;
+}
+
 }  // namespace
 }  // namespace fissure

@@ -6,6 +6,7 @@
 #include "fissure/mesh/surface_mesh.hpp"
 #include "fissure/mesh/tet_mesh.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,10 @@ struct TetrahedralizeOptions {
   double refuse_below_dihedral_deg = 1.0;
   /// Seed of CGAL's generator, reseeded before every call: same input → same mesh.
   unsigned seed = 0;
+  /// Requests whose estimated peak memory (tetrahedralize_memory_estimate) exceeds this are
+  /// refused before any work (InvalidInput). 0 = this machine's physical memory; UINT64_MAX = no
+  /// limit.
+  std::uint64_t memory_limit_bytes = 0;
 
   /// Readable problems, empty when valid.
   std::vector<std::string> problems() const;
@@ -47,11 +52,23 @@ struct TetrahedralizeReport {
   std::vector<std::string> warnings;  ///< e.g. min dihedral below 5°
 };
 
+/// Estimated peak memory of tetrahedralize() for `target_tets` tets, bytes: 700 bytes per tet
+/// (CGAL's triangulation, its refinement queues and the TetMesh; measured 630–650 with peak RSS
+/// from 24K to 300K tets, see tetrahedralize.cpp) plus 100 MB, so 5M tets ≈ 3.6 GB and 50M ≈ 35 GB.
+double tetrahedralize_memory_estimate(int target_tets);
+
 /// Tetrahedralises a closed, consistently oriented, manifold surface (see repair_surface). The
 /// tets come out positively oriented, nodes in order of first use by the tets. Deterministic.
-/// Throws InvalidInput for an empty or open surface, NumericalFailure when CGAL produces no tets
-/// or a mesh below `refuse_below_dihedral_deg`, Cancelled between stages when `cancel` is set.
-/// Cost: ≈ 0.6 s for 24K tets (performance.md §2). Runs on the calling thread only.
+/// Every attempt is checked against the surface (boundary nodes on it, volume, boundary area,
+/// bounding box); a mesh that does not fill it (a hollow plate) is re-made with a smaller size
+/// bound, and after kMaxRefills such attempts refused.
+/// Throws InvalidInput for an empty or open surface or a request beyond `memory_limit_bytes`;
+/// NumericalFailure when CGAL produces no tets, a mesh that does not fill the surface (naming the
+/// surface and the figures) or a mesh below `refuse_below_dihedral_deg`; Cancelled when `cancel`
+/// is set: CGAL's refinement polls it (through Mesh_3's stop flag) and stops within
+/// milliseconds; perturbation and exudation do not and end within their time limits.
+/// Reports progress a few times per second during refinement. Cost: ≈ 0.6 s for 24K tets
+/// (performance.md §2). Runs on the calling thread only.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report = nullptr, ProgressSink* progress = nullptr,
                        const CancelToken* cancel = nullptr);
