@@ -1,9 +1,14 @@
 #include "cli_common.hpp"
 
+#include "option_checks.hpp"
+
 #include "fissure/base/error.hpp"
 
-#include <charconv>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
+#include <iostream>
+#include <unistd.h>
 
 namespace fissure::cli {
 
@@ -13,7 +18,7 @@ void add_material_options(CLI::App& cmd, ElasticMaterial& material, bool require
   for (std::size_t i = 0; i < table.size(); ++i) {
     const ParameterInfo& info = table[i];
     const std::string unit = info.unit[0] ? std::string(" [") + info.unit + "]" : std::string();
-    auto* option = cmd.add_option(info.flag, *targets[i], std::string(info.help) + unit);
+    auto* option = cmd.add_option(info.flag, *targets[i], std::string(info.help) + unit)->check(finite_number());
     const bool required = i < 2 || require_density;
     if (required) {
       option->required();
@@ -34,30 +39,57 @@ void validate_material_flags(const ElasticMaterial& material) {
   if (!message.empty()) throw InvalidInput(message);
 }
 
-std::array<double, 3> parse_triple(const std::string& text, const std::string& flag) {
-  std::array<double, 3> out{};
-  std::size_t pos = 0;
-  for (int i = 0; i < 3; ++i) {
-    const std::size_t comma = i < 2 ? text.find(',', pos) : text.size();
-    if (comma == std::string::npos) throw InvalidInput(flag + " '" + text + "': expected three numbers x,y,z");
-    const std::string item = text.substr(pos, comma - pos);
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), out[static_cast<std::size_t>(i)]);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size() || !std::isfinite(out[static_cast<std::size_t>(i)])) {
-      throw InvalidInput(flag + " '" + text + "': '" + item + "' is not a finite number");
-    }
-    pos = comma + 1;
-  }
-  return out;
+std::string cache_directory_problem(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return ec.message();
+  // access(W_OK) says yes to root on a read-only mount: create a file to know.
+  std::string probe = (dir / ".fissure-write-test-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0) return std::strerror(errno);
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return {};
 }
 
 ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed,
-                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded) {
+                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded,
+                           TerminalProgress& progress, const CancelToken* cancel) {
   loaded = false;
-  if (no_cache) return ModalBasis::compute(std::move(body), fixed, options);
+  if (no_cache) return ModalBasis::compute(std::move(body), fixed, options, &progress, cancel);
   const std::filesystem::path dir = cache_dir.empty() ? default_cache_directory() : std::filesystem::path(cache_dir);
-  return cached_modal_basis(std::move(body), fixed, options, dir, &loaded);
+  // cached_modal_basis skips a cache it cannot write without a word: say it once, here. A
+  // read-only cache is still read.
+  if (const std::string problem = cache_directory_problem(dir); !problem.empty()) {
+    progress.clear();
+    std::cerr << "fissure: warning: cannot write the modal cache in " << dir.string() << ": " << problem
+              << "; continuing without it\n";
+  }
+  return cached_modal_basis(std::move(body), fixed, options, dir, &loaded, &progress, cancel);
 }
 
 MassKind mass_kind(const std::string& flag) { return flag == "consistent" ? MassKind::Consistent : MassKind::Lumped; }
+
+ExemplarAnalysis analyze_image(const std::filesystem::path& path, const ExemplarAnalysisOptions& options) {
+  try {
+    return analyze_exemplar(path, options);
+  } catch (const InvalidInput& e) {
+    // The core's image size check names no CLI flag; the CLI knows which one raises the limit.
+    const std::string message = e.what();
+    if (message.find("megapixels") == std::string::npos || message.find("--max-megapixels") != std::string::npos) throw;
+    throw InvalidInput(message + " (raise it with --max-megapixels)");
+  }
+}
+
+void add_max_megapixels_option(CLI::App& cmd, double& max_megapixels) {
+  // 1e4 MP (10^10 pixels) is far above any tracing and keeps the pixel count well inside int64.
+  cmd.add_option("--max-megapixels", max_megapixels, "Refuse larger images before decoding them")
+      ->default_val(64)
+      ->check(finite_in(1e-3, 1e4));
+}
+
+std::int64_t max_pixels(double max_megapixels) { return std::llround(max_megapixels * 1e6); }
+
+std::FILE* summary_stream(const std::string& output) { return output == "-" ? stderr : stdout; }
 
 }  // namespace fissure::cli

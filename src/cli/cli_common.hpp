@@ -1,34 +1,55 @@
 #pragma once
-// Pieces shared by the subcommands: material flags read from the parameter table, support and
-// load lists, and a stopwatch.
+// Pieces shared by the subcommands: material flags read from the parameter table, the modal
+// basis with its cache, image analysis with the CLI's hints, and a stopwatch.
 
+#include "fissure/exemplar/exemplar_analysis.hpp"
 #include "fissure/fem/elastic_material.hpp"
 #include "fissure/fem/modal_basis.hpp"
+
+#include "terminal_progress.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 namespace fissure::cli {
 
 /// Adds --E, --nu, --rho to `cmd` from elastic_material_parameters(); `required` per flag name.
+/// Each refuses a non-finite value while parsing; the ranges are checked by validate_material_flags.
 void add_material_options(CLI::App& cmd, ElasticMaterial& material, bool require_density);
 
 /// Throws InvalidInput naming the flag ("--nu 0.6 is outside [0, 0.5)") for an out-of-range value.
 void validate_material_flags(const ElasticMaterial& material);
 
-/// Parses "a,b,c" into three finite numbers; throws InvalidInput naming `flag`.
-std::array<double, 3> parse_triple(const std::string& text, const std::string& flag);
-
 /// The modal basis for a CLI command: from the cache in `cache_dir` (empty: the default cache
-/// directory) unless `no_cache`; `loaded` tells whether it came from the cache.
+/// directory) unless `no_cache`; `loaded` tells whether it came from the cache. A cache directory
+/// that cannot be written is said once on stderr ("fissure: warning: cannot write the modal cache
+/// in DIR: reason; continuing without it") and the basis is computed anyway.
 ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed,
-                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded);
+                           const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded,
+                           TerminalProgress& progress, const CancelToken* cancel);
+
+/// The problem that keeps `dir` from holding cache files (it cannot be created, or a file cannot
+/// be created in it), empty when it is writable. Creates `dir` when missing.
+std::string cache_directory_problem(const std::filesystem::path& dir);
 
 /// "lumped" or "consistent" (the --mass flag) as a MassKind.
 MassKind mass_kind(const std::string& flag);
+
+/// analyze_exemplar, its refusal of an image above the pixel limit completed with the flag that
+/// raises it: "... megapixels (raise it with --max-megapixels)".
+ExemplarAnalysis analyze_image(const std::filesystem::path& path, const ExemplarAnalysisOptions& options);
+
+/// --max-megapixels (default 64, finite, in [0.001, 10000]) on every command that decodes images.
+void add_max_megapixels_option(CLI::App& cmd, double& max_megapixels);
+/// The pixel limit of CrackImageOptions for a --max-megapixels value.
+std::int64_t max_pixels(double max_megapixels);
+
+/// Where a command's summary goes: stdout, unless a result is written to stdout ("-").
+std::FILE* summary_stream(const std::string& output);
 
 class Stopwatch {
 public:

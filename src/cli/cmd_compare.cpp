@@ -2,8 +2,10 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "interruption.hpp"
+#include "terminal_progress.hpp"
 
-#include "fissure/exemplar/exemplar_analysis.hpp"
+#include "fissure/base/number_text.hpp"
 #include "fissure/exemplar/similarity.hpp"
 #include "fissure/exemplar/stats_json.hpp"
 
@@ -15,28 +17,43 @@ namespace {
 struct CompareArgs {
   std::string a, b;
   std::string weights = "3,1,1";
+  double max_megapixels = 64.0;
   bool json = false;
+  bool quiet = false;
 };
 
-PatternStats stats_of(const std::string& input) {
+PatternStats stats_of(const std::string& input, const CompareArgs& args, TerminalProgress& progress) {
   const std::filesystem::path path(input);
   if (path.extension() == ".json") return load_pattern_stats(path);
-  return analyze_exemplar(path).stats;
+  progress.stage("analysing " + input);
+  ExemplarAnalysisOptions options;
+  options.image.max_pixels = max_pixels(args.max_megapixels);
+  return analyze_image(path, options).stats;
 }
 
 int run_compare(const CompareArgs& args) {
-  const auto w = parse_triple(args.weights, "--weights");
+  const auto w = parse_number_list(args.weights, "--weights", 3, "fragment,crack,junction");
   const SimilarityWeights weights{w[0], w[1], w[2]};
-  const PatternStats a = stats_of(args.a);
-  const PatternStats b = stats_of(args.b);
+  TerminalProgress progress(args.quiet);
+  PatternStats a, b;
+  {
+    AbandonableWork work;
+    a = stats_of(args.a, args, progress);
+    b = stats_of(args.b, args, progress);
+  }
+  throw_if_interrupted();
+  progress.clear();
   const Similarity s = pattern_similarity(a, b, weights);
+  const auto g = [](double x) { return format_number(x); };
   if (args.json) {
-    std::printf("{\"error\": %.6g, \"emd_fragment\": %.6g, \"emd_crack\": %.6g, \"emd_junction\": %.6g, "
-                "\"weights\": [%g, %g, %g]}\n",
-                s.total, s.fragment, s.crack, s.junction, w[0], w[1], w[2]);
+    std::printf("{\"error\": %s, \"emd_fragment\": %s, \"emd_crack\": %s, \"emd_junction\": %s, \"weights\": [%s, %s, %s]}\n",
+                g(s.total).c_str(), g(s.fragment).c_str(), g(s.crack).c_str(), g(s.junction).c_str(), g(w[0]).c_str(),
+                g(w[1]).c_str(), g(w[2]).c_str());
   } else {
-    std::printf("Eq. 5 error %.4f = %g x %.4f (fragment areas) + %g x %.4f (crack lengths) + %g x %.4f (junction density)\n",
-                s.total, w[0], s.fragment, w[1], s.crack, w[2], s.junction);
+    const auto f = [](double x) { return format_number(x, 4); };
+    std::printf("Eq. 5 error %s = %s x %s (fragment areas) + %s x %s (crack lengths) + %s x %s (junction density)\n",
+                f(s.total).c_str(), g(w[0]).c_str(), f(s.fragment).c_str(), g(w[1]).c_str(), f(s.crack).c_str(),
+                g(w[2]).c_str(), f(s.junction).c_str());
   }
   return kExitOk;
 }
@@ -49,7 +66,9 @@ void register_compare(CLI::App& app, Action& action) {
   cmd->add_option("A", args->a, "Traced image or statistics JSON (from fissure analyze --json)")->required();
   cmd->add_option("B", args->b, "Traced image or statistics JSON")->required();
   cmd->add_option("--weights", args->weights, "Weights of the fragment, crack and junction terms")->default_val("3,1,1");
+  add_max_megapixels_option(*cmd, args->max_megapixels);
   cmd->add_flag("--json", args->json, "Print the result as JSON");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   cmd->callback([&action, args] { action = [args] { return run_compare(*args); }; });
 }
 

@@ -2,6 +2,9 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "interruption.hpp"
+#include "memory_estimate.hpp"
+#include "terminal_progress.hpp"
 
 #include "fissure/fem/modal_basis.hpp"
 #include "fissure/fem/supports.hpp"
@@ -9,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <iostream>
 
 namespace fissure::cli {
@@ -22,21 +26,36 @@ struct ModesArgs {
   std::string mass = "lumped";
   std::string cache_dir;
   bool no_cache = false;
+  bool quiet = false;
+  bool allow_large = false;
 };
 
 int run_modes(const ModesArgs& args) {
   validate_material_flags(args.material);
+  TerminalProgress progress(args.quiet);
   Stopwatch clock;
-  auto mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
-  std::vector<SupportSpec> supports;
-  for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
-  const std::vector<int> fixed = resolve_supports(*mesh, supports);
-  auto body = std::make_shared<const ElasticBody>(mesh, args.material);
-  ModalOptions options;
-  options.mode_count = args.count;
-  options.mass = mass_kind(args.mass);
+  std::shared_ptr<const TetMesh> mesh;
+  ModalBasis basis;
   bool loaded = false;
-  const ModalBasis basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded);
+  {
+    AbandonableWork work;
+    progress.stage("reading " + args.mesh);
+    mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
+    require_memory_unless_allowed(modal_bytes(mesh->tet_count(), mesh->node_count(), args.count), args.allow_large,
+                                  (std::to_string(args.count) + " modes of " + args.mesh).c_str());
+    std::vector<SupportSpec> supports;
+    for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
+    const std::vector<int> fixed = resolve_supports(*mesh, supports);
+    progress.stage("assembling");
+    auto body = std::make_shared<const ElasticBody>(mesh, args.material);
+    throw_if_interrupted();
+    ModalOptions options;
+    options.mode_count = args.count;
+    options.mass = mass_kind(args.mass);
+    basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded, progress, &interrupt_token());
+  }
+  throw_if_interrupted();
+  progress.clear();
   nlohmann::json out;
   out["mesh"] = args.mesh;
   out["tets"] = mesh->tet_count();
@@ -47,7 +66,7 @@ int run_modes(const ModesArgs& args) {
   std::vector<double> frequencies(hz.data(), hz.data() + hz.size());
   out["frequencies_hz"] = frequencies;
   out["cached"] = loaded;
-  out["milliseconds"] = clock.milliseconds();
+  out["milliseconds"] = std::llround(clock.milliseconds());
   std::cout << out.dump(2) << '\n';
   return kExitOk;
 }
@@ -66,6 +85,9 @@ void register_modes(CLI::App& app, Action& action) {
   cmd->add_option("--mass", args->mass, "Mass matrix")->check(CLI::IsMember({"lumped", "consistent"}))->default_val("lumped");
   cmd->add_option("--cache-dir", args->cache_dir, "Where modal bases are cached");
   cmd->add_flag("--no-cache", args->no_cache, "Do not read or write the cache");
+  cmd->add_flag("--allow-large", args->allow_large,
+                "Try an analysis whose estimated memory exceeds this machine's (refused by default)");
+  cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   cmd->callback([&action, args] { action = [args] { return run_modes(*args); }; });
 }
 

@@ -2,10 +2,14 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-
-#include "fissure/base/atomic_file.hpp"
+#include "interruption.hpp"
+#include "largest_displacement.hpp"
+#include "memory_estimate.hpp"
+#include "option_checks.hpp"
+#include "terminal_progress.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 #include "fissure/fem/load.hpp"
 #include "fissure/fem/modal_basis.hpp"
 #include "fissure/fem/static_solver.hpp"
@@ -33,72 +37,93 @@ struct SolveArgs {
   int threads = 1;
   bool binary = false;
   bool quiet = false;
+  bool allow_large = false;
 };
 
 int run_solve(const SolveArgs& args) {
   validate_material_flags(args.material);
-  check_output_path(args.output);
+  check_msh_output(args.output);
   if (args.load.empty() && args.gravity.empty()) throw InvalidInput("give at least one --load or --gravity");
+  TerminalProgress progress(args.quiet);
   Stopwatch clock;
-  auto mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
-
-  // Loads and supports are checked before any expensive work.
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh->node_count()));
-  for (const std::string& spec : args.load) f += assemble_load(*mesh, parse_load(spec));
-  if (!args.gravity.empty()) {
-    const auto g = parse_triple(args.gravity, "--gravity");
-    f += gravity_load(*mesh, args.material.density, Eigen::Vector3d(g[0], g[1], g[2]));
-  }
-  std::vector<SupportSpec> supports;
-  for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
-  const std::vector<int> fixed = resolve_supports(*mesh, supports);
-  check_supports_for_mechanisms(*mesh, fixed);
-  const MassKind mass = mass_kind(args.mass);
-
-  auto body = std::make_shared<const ElasticBody>(mesh, args.material, args.threads);
+  std::shared_ptr<const TetMesh> mesh;
+  std::vector<int> fixed;
   Eigen::VectorXd u;
   std::string method;
   double residual = 0.0;
-  if (args.modes > 0) {
-    ModalOptions options;
-    options.mode_count = args.modes;
-    options.mass = mass;
-    bool loaded = false;
-    const ModalBasis basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded);
-    u = basis.static_displacement(f);
-    method = "modal, " + std::to_string(args.modes) + " modes" + (loaded ? " (cached basis)" : "");
-  } else {
-    StaticSolverOptions options;
-    options.mass = mass;
-    const StaticSolver solver(body, fixed, options);
-    const StaticSolution solution = solver.solve(f);
-    u = solution.displacement;
-    residual = solution.relative_residual;
-    method = "direct";
-  }
   StressField stress;
   Eigen::VectorXd max_principal;
-  compute_stress_and_max_principal(*mesh, body->gradients(), args.material, u, stress, max_principal);
+  std::shared_ptr<const ElasticBody> body;
+  {
+    AbandonableWork work;
+    progress.stage("reading " + args.mesh);
+    mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
+    const double tets = mesh->tet_count();
+    const double bytes = args.modes > 0 ? modal_bytes(tets, mesh->node_count(), args.modes) : static_solve_bytes(tets);
+    require_memory_unless_allowed(bytes, args.allow_large, ("solving " + args.mesh).c_str());
+
+    // Loads and supports are checked before any expensive work.
+    Eigen::VectorXd f = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(mesh->node_count()));
+    for (const std::string& spec : args.load) f += assemble_load(*mesh, parse_load(spec));
+    if (!args.gravity.empty()) {
+      const auto g = parse_number_list(args.gravity, "--gravity", 3, "gx,gy,gz (m/s^2)");
+      f += gravity_load(*mesh, args.material.density, Eigen::Vector3d(g[0], g[1], g[2]));
+    }
+    std::vector<SupportSpec> supports;
+    for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
+    fixed = resolve_supports(*mesh, supports);
+    check_supports_for_mechanisms(*mesh, fixed);
+    const MassKind mass = mass_kind(args.mass);
+
+    progress.stage("assembling");
+    body = std::make_shared<const ElasticBody>(mesh, args.material, args.threads);
+    throw_if_interrupted();
+    if (args.modes > 0) {
+      ModalOptions options;
+      options.mode_count = args.modes;
+      options.mass = mass;
+      bool loaded = false;
+      const ModalBasis basis =
+          modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded, progress, &interrupt_token());
+      u = basis.static_displacement(f);
+      method = "modal, " + std::to_string(args.modes) + " modes" + (loaded ? " (cached basis)" : "");
+    } else {
+      progress.stage("solving");
+      StaticSolverOptions options;
+      options.mass = mass;
+      const StaticSolver solver(body, fixed, options);
+      throw_if_interrupted();
+      const StaticSolution solution = solver.solve(f);
+      u = solution.displacement;
+      residual = solution.relative_residual;
+      method = "direct";
+    }
+    throw_if_interrupted();
+    progress.stage("computing stress");
+    compute_stress_and_max_principal(*mesh, body->gradients(), args.material, u, stress, max_principal);
+  }
+  throw_if_interrupted();
 
   Eigen::MatrixXd displacement(mesh->node_count(), 3);
   for (int v = 0; v < mesh->node_count(); ++v) displacement.row(v) = u.segment<3>(3 * v).transpose();
+  progress.stage("writing " + args.output);
   write_msh(args.output, *mesh,
             {{"displacement", MshView::Kind::NodeData, displacement},
              {"stress", MshView::Kind::ElementData, voigt_rows_to_tensor_rows(stress)},
              {"max_principal_stress", MshView::Kind::ElementData, max_principal}},
             MshWriteOptions{args.binary});
+  progress.clear();
   if (!args.quiet) {
-    if (fixed.empty()) std::printf("no --fix: free body, solved by inertia relief\n");
-    char residual_buffer[64] = "";
-    if (args.modes == 0) std::snprintf(residual_buffer, sizeof residual_buffer, ", residual %.1e", residual);
-    const std::string residual_text = residual_buffer;
+    std::FILE* out = summary_stream(args.output);
+    if (fixed.empty()) std::fprintf(out, "no --fix: free body, solved by inertia relief\n");
+    const std::string residual_text = args.modes == 0 ? ", residual " + format_number(residual, 2) : std::string();
     Eigen::Index peak_tet = 0;
     const double peak = max_principal.maxCoeff(&peak_tet);
-    std::printf("%s: %d tets, %s%s, max |u| %.4g m, peak max principal stress %.4g Pa (tet %ld), %.0f ms -> %s\n",
-                args.mesh.c_str(), mesh->tet_count(), method.c_str(),
-                residual_text.c_str(),
-                std::sqrt(displacement.rowwise().squaredNorm().maxCoeff()), peak, static_cast<long>(peak_tet), clock.milliseconds(),
-                args.output.c_str());
+    std::fprintf(out, "%s: %d tets, %s%s, max |u| %s m, peak max principal stress %s Pa (%s), %lld ms -> %s\n",
+                 args.mesh.c_str(), mesh->tet_count(), method.c_str(), residual_text.c_str(),
+                 format_number(largest_displacement(u), 4).c_str(), format_number(peak, 4).c_str(),
+                 mesh->tet_label(static_cast<int>(peak_tet)).c_str(), std::llround(clock.milliseconds()),
+                 args.output.c_str());
   }
   return kExitOk;
 }
@@ -129,9 +154,12 @@ void register_solve(CLI::App& app, Action& action) {
   cmd->add_option("--threads", args->threads, "Threads for assembly (results are identical at any count)")
       ->default_val(1)
       ->check(CLI::Range(1, 256));
-  cmd->add_option("-o,--output", args->output, "Result file, gmsh MSH 4.1 with views")->required();
+  cmd->add_option("-o,--output", args->output, "Result file, gmsh MSH 4.1 with views: a .msh file, or - for stdout")
+      ->required();
   cmd->add_flag("--binary", args->binary, "Write binary MSH instead of ASCII");
-  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success");
+  cmd->add_flag("--allow-large", args->allow_large,
+                "Try a solve whose estimated memory exceeds this machine's (refused by default)");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success, no progress");
   cmd->callback([&action, args] { action = [args] { return run_solve(*args); }; });
 }
 

@@ -1,0 +1,67 @@
+#include "option_checks.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace fissure::cli {
+namespace {
+
+// The value as from_chars reads it; false for anything that is not entirely one number. A
+// leading '+' is allowed, as users type it.
+bool read_number(std::string_view text, double& value) {
+  if (text.size() > 1 && text.front() == '+' && text[1] != '-') text.remove_prefix(1);
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return !text.empty() && ec == std::errc() && end == text.data() + text.size();
+}
+
+std::string range_text(double lo, double hi) { return "[" + format_number(lo) + ", " + format_number(hi) + "]"; }
+
+}  // namespace
+
+CLI::Validator finite_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!read_number(text, value) || !std::isfinite(value)) return "'" + text + "' is not a finite number";
+        return {};
+      },
+      "FINITE");
+}
+
+CLI::Validator finite_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!read_number(text, value) || !std::isfinite(value)) return "'" + text + "' is not a finite number";
+        if (value < lo || value > hi) return text + " is outside " + range_text(lo, hi);
+        return {};
+      },
+      "FINITE in " + range_text(lo, hi));
+}
+
+CLI::Validator count_in(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!read_number(text, value) || !std::isfinite(value) || value != std::floor(value)) {
+          return "'" + text + "' is not a whole number";
+        }
+        if (value < lo || value > hi) return text + " is outside " + range_text(lo, hi);
+        return {};
+      },
+      "COUNT in " + range_text(lo, hi));
+}
+
+void check_msh_output(const std::string& output) {
+  const std::filesystem::path path(output);
+  if (!is_stream_target(path) && path.extension() != ".msh") {
+    throw InvalidInput("-o " + output + ": the output must end in .msh");
+  }
+  check_output_path(path);
+}
+
+}  // namespace fissure::cli

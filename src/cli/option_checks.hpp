@@ -1,0 +1,28 @@
+#pragma once
+// Checks of command-line values that CLI11 does not make: finiteness (CLI11's Range lets NaN
+// through, and "inf" overflows later conversions), whole counts written in scientific notation
+// ("--tets 5e7"), and the output names the writers accept.
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace fissure::cli {
+
+/// A floating option's value must be a finite number: "'nan' is not a finite number".
+CLI::Validator finite_number();
+
+/// A floating option's value must be a finite number in [lo, hi]: "nan is not a finite number",
+/// "1e+06 is outside [0, 100]" (CLI11 prefixes the option name). Used by every floating option.
+CLI::Validator finite_in(double lo, double hi);
+
+/// A count: a whole number in [lo, hi], also written as "2e6". Store it in a double (CLI11's
+/// integer conversion refuses "5e7") and convert with std::lround after parsing.
+CLI::Validator count_in(double lo, double hi);
+
+/// The -o of mesh and solve: InvalidInput "-o x.stl: the output must end in .msh" unless
+/// `output` ends in .msh or is a stream target ("-", a FIFO, a character device); then the
+/// checks of check_output_path (missing directory, a directory, …), before any work.
+void check_msh_output(const std::string& output);
+
+}  // namespace fissure::cli
