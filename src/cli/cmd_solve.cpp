@@ -100,7 +100,7 @@ int run_solve(const SolveArgs& args) {
     }
     throw_if_interrupted();
     progress.stage("computing stress");
-    compute_stress_and_max_principal(*mesh, body->gradients(), args.material, u, stress, max_principal);
+    compute_stress_and_max_principal(*body, u, stress, max_principal);
   }
   throw_if_interrupted();
 

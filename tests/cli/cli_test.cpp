@@ -224,7 +224,7 @@ TEST_F(Cli, BadInputGivesOneLineAndADistinctCode) {
   expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --fix ball:-0.3,-0.2,0,0.01" + load + out), 3,
                  "rigid motions free");
   expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --fix box:1,0,0,1,0,1" + load + out), 3, "box bound x0");
-  expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --load zmax=1,2" + out), 3, "expected 3 force components");
+  expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --load zmax=1,2" + out), 3, "expected 3 numbers fx,fy,fz (newtons), got 2");
   expect_failure(test::run_command(fissure() + " mesh tile:1,1,-1 -o " + (dir / "x.msh").string()), 3, "tile:1,1,-1");
   expect_failure(test::run_command(fissure() + " mesh " + (dir / "nothing.stl").string() + " -o " + (dir / "x.msh").string()),
                  4, "nothing.stl: no such file");
