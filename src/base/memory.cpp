@@ -29,7 +29,7 @@ void require_memory(double estimated_bytes, std::uint64_t limit_bytes, std::stri
   const std::uint64_t physical = physical_memory_bytes();
   const std::uint64_t limit = limit_bytes == 0 ? physical : limit_bytes;
   if (limit == 0 || !(estimated_bytes > static_cast<double>(limit))) return;
-  throw InvalidInput(std::string(what) + " needs about " + format_bytes(estimated_bytes) + ", more than the " +
+  throw MemoryLimitExceeded(std::string(what) + " needs about " + format_bytes(estimated_bytes) + ", more than the " +
                      format_bytes(static_cast<double>(limit)) + " allowed (this machine has " +
                      format_bytes(static_cast<double>(physical)) + ")");
 }

@@ -39,33 +39,20 @@ void validate_material_flags(const ElasticMaterial& material) {
   if (!message.empty()) throw InvalidInput(message);
 }
 
-std::string cache_directory_problem(const std::filesystem::path& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return ec.message();
-  // access(W_OK) says yes to root on a read-only mount: create a file to know.
-  std::string probe = (dir / ".fissure-write-test-XXXXXX").string();
-  const int fd = ::mkstemp(probe.data());
-  if (fd < 0) return std::strerror(errno);
-  ::close(fd);
-  ::unlink(probe.c_str());
-  return {};
-}
-
 ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed,
                            const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded,
                            TerminalProgress& progress, const CancelToken* cancel) {
   loaded = false;
   if (no_cache) return ModalBasis::compute(std::move(body), fixed, options, &progress, cancel);
   const std::filesystem::path dir = cache_dir.empty() ? default_cache_directory() : std::filesystem::path(cache_dir);
-  // cached_modal_basis skips a cache it cannot write without a word: say it once, here. A
-  // read-only cache is still read.
-  if (const std::string problem = cache_directory_problem(dir); !problem.empty()) {
+  // A cache that cannot be written does not fail the command, but the user hears it once.
+  std::string warning;
+  ModalBasis basis = cached_modal_basis(std::move(body), fixed, options, dir, &loaded, &progress, cancel, &warning);
+  if (!warning.empty()) {
     progress.clear();
-    std::cerr << "fissure: warning: cannot write the modal cache in " << dir.string() << ": " << problem
-              << "; continuing without it\n";
+    std::cerr << "fissure: warning: " << warning << '\n';
   }
-  return cached_modal_basis(std::move(body), fixed, options, dir, &loaded, &progress, cancel);
+  return basis;
 }
 
 MassKind mass_kind(const std::string& flag) { return flag == "consistent" ? MassKind::Consistent : MassKind::Lumped; }

@@ -32,10 +32,6 @@ ModalBasis modal_basis_for(std::shared_ptr<const ElasticBody> body, const std::v
                            const ModalOptions& options, bool no_cache, const std::string& cache_dir, bool& loaded,
                            TerminalProgress& progress, const CancelToken* cancel);
 
-/// The problem that keeps `dir` from holding cache files (it cannot be created, or a file cannot
-/// be created in it), empty when it is writable. Creates `dir` when missing.
-std::string cache_directory_problem(const std::filesystem::path& dir);
-
 /// "lumped" or "consistent" (the --mass flag) as a MassKind.
 MassKind mass_kind(const std::string& flag);
 

@@ -30,9 +30,8 @@ struct MeshArgs {
 };
 
 int run_mesh(const MeshArgs& args) {
-  check_msh_output(args.output);
+  check_msh_output_path(args.output);
   const int tets = static_cast<int>(std::lround(args.tets));
-  require_memory_unless_allowed(meshing_bytes(tets), args.allow_large, ("meshing " + std::to_string(tets) + " tets").c_str());
   TerminalProgress progress(args.quiet);
   Stopwatch clock;
   SurfaceRepairReport repairs;
@@ -45,6 +44,7 @@ int run_mesh(const MeshArgs& args) {
     TetrahedralizeOptions options;
     options.target_tets = tets;
     options.seed = args.seed;
+    options.memory_limit_bytes = memory_limit(args.allow_large);
     mesh = tetrahedralize(surface, options, &report, &progress, &interrupt_token());
   }
   throw_if_interrupted();

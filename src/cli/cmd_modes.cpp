@@ -41,8 +41,6 @@ int run_modes(const ModesArgs& args) {
     AbandonableWork work;
     progress.stage("reading " + args.mesh);
     mesh = std::make_shared<const TetMesh>(read_msh(args.mesh));
-    require_memory_unless_allowed(modal_bytes(mesh->tet_count(), mesh->node_count(), args.count), args.allow_large,
-                                  (std::to_string(args.count) + " modes of " + args.mesh).c_str());
     std::vector<SupportSpec> supports;
     for (const std::string& spec : args.fix) supports.push_back(parse_support(spec));
     const std::vector<int> fixed = resolve_supports(*mesh, supports);
@@ -52,6 +50,7 @@ int run_modes(const ModesArgs& args) {
     ModalOptions options;
     options.mode_count = args.count;
     options.mass = mass_kind(args.mass);
+    options.memory_limit_bytes = memory_limit(args.allow_large);
     basis = modal_basis_for(body, fixed, options, args.no_cache, args.cache_dir, loaded, progress, &interrupt_token());
   }
   throw_if_interrupted();

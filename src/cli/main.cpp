@@ -71,6 +71,10 @@ int main(int argc, char** argv) {
 
   try {
     return action ? action() : kExitUsage;
+  } catch (const fissure::MemoryLimitExceeded& e) {
+    // Every command that can be refused for its memory estimate takes --allow-large.
+    std::cerr << "fissure: invalid input: " << one_line(e.what()) << "; --allow-large tries anyway\n";
+    return kExitInvalidInput;
   } catch (const fissure::InvalidInput& e) {
     std::cerr << "fissure: invalid input: " << one_line(e.what()) << '\n';
     return kExitInvalidInput;

@@ -1,6 +1,5 @@
 #include "option_checks.hpp"
 
-#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 
@@ -54,14 +53,6 @@ CLI::Validator count_in(double lo, double hi) {
         return {};
       },
       "COUNT in " + range_text(lo, hi));
-}
-
-void check_msh_output(const std::string& output) {
-  const std::filesystem::path path(output);
-  if (!is_stream_target(path) && path.extension() != ".msh") {
-    throw InvalidInput("-o " + output + ": the output must end in .msh");
-  }
-  check_output_path(path);
 }
 
 }  // namespace fissure::cli

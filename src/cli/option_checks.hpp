@@ -20,9 +20,4 @@ CLI::Validator finite_in(double lo, double hi);
 /// integer conversion refuses "5e7") and convert with std::lround after parsing.
 CLI::Validator count_in(double lo, double hi);
 
-/// The -o of mesh and solve: InvalidInput "-o x.stl: the output must end in .msh" unless
-/// `output` ends in .msh or is a stream target ("-", a FIFO, a character device); then the
-/// checks of check_output_path (missing directory, a directory, …), before any work.
-void check_msh_output(const std::string& output);
-
 }  // namespace fissure::cli

@@ -118,10 +118,12 @@ double dihedral_at_edge(const Eigen::Vector3d p[4], int i, int j) {
   int k = 0;
   while (k == i || k == j) ++k;
   const int l = 6 - i - j - k;
-  const Eigen::Vector3d e = (p[j] - p[i]).normalized();
-  Eigen::Vector3d u = p[k] - p[i], w = p[l] - p[i];
-  u -= u.dot(e) * e;
-  w -= w.dot(e) * e;
+  // Unit vectors throughout (stableNormalized scales before squaring): a tet of size 1e-100 m
+  // would otherwise underflow the cross product and read as a zero angle.
+  const Eigen::Vector3d e = (p[j] - p[i]).stableNormalized();
+  Eigen::Vector3d u = (p[k] - p[i]).stableNormalized(), w = (p[l] - p[i]).stableNormalized();
+  u = (u - u.dot(e) * e).stableNormalized();
+  w = (w - w.dot(e) * e).stableNormalized();
   return std::atan2(u.cross(w).norm(), u.dot(w));
 }
 

@@ -212,6 +212,10 @@ TEST(TetMesh, MessagesUseTheFilesTags) {
   EXPECT_EQ(ok.node_tag(0), 11);
   EXPECT_EQ(ok.tet_label(5), "tet 1206");
   EXPECT_EQ(kuhn_cube().node_label(7), "node 8");
+  // Scale does not matter to the checks: a cube of 1e-100 m once read as folded (its angles
+  // underflowed to zero).
+  EXPECT_NO_THROW(kuhn_cube(Eigen::Vector3d::Zero(), 1e-100));
+  EXPECT_NO_THROW(kuhn_cube(Eigen::Vector3d::Constant(1e6), 1e3));
   tags.tets.pop_back();
   EXPECT_THROW(TetMesh(cube.nodes(), cube.tets(), "tagged.msh", {}, tags), InvalidInput);
 }

@@ -28,6 +28,13 @@ public:
   using Error::Error;
 };
 
+/// A request whose estimated memory exceeds the allowed limit (base/memory.hpp): bad input of
+/// its own kind so a front end can say how to allow it anyway.
+class MemoryLimitExceeded : public InvalidInput {
+public:
+  using InvalidInput::InvalidInput;
+};
+
 /// A computation failed numerically: a factorisation lost positive definiteness, an eigensolver
 /// did not converge, a residual is too large, a result is not finite.
 class NumericalFailure : public Error {
