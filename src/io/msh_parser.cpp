@@ -115,6 +115,11 @@ public:
     if (value < 1 || value > kMaxTag) fail(std::string(what) + " tag " + std::to_string(value) + " is out of range");
     return value;
   }
+  // A physical tag's sign is an orientation; −2³¹ has no positive counterpart.
+  int physical_tag(int value) {
+    if (value == std::numeric_limits<int>::min()) fail("physical tag " + std::to_string(value) + " is out of range");
+    return std::abs(value);
+  }
 
 private:
   const std::string& m_bytes;
@@ -159,7 +164,7 @@ void read_entities_41(Reader& r, bool binary, std::map<std::pair<int, int>, Enti
       Entity& e = entities[{dim, tag}];
       for (std::int64_t k = 0; k < nphys; ++k) {
         const int p = binary ? r.binary<int>() : r.number<int>();
-        e.physicals.push_back(std::abs(p));
+        e.physicals.push_back(r.physical_tag(p));
       }
       if (dim > 0) {
         const std::int64_t nbound =
@@ -264,7 +269,7 @@ void read_elements_22(Reader& r, bool binary, MshContent& c) {
     e.tag = r.tag(tag, "element");
     e.type = type;
     e.dimension = msh_element_dimension(type);
-    if (!tags.empty() && tags[0] != 0) e.physicals.push_back(std::abs(tags[0]));
+    if (!tags.empty() && tags[0] != 0) e.physicals.push_back(r.physical_tag(tags[0]));
     e.entity = tags.size() > 1 ? tags[1] : 0;
     for (auto& v : nodes) v = r.tag(v, "node");
     e.nodes = std::move(nodes);

@@ -712,6 +712,11 @@ TEST(Msh, BadFilesAreRefusedWithTheFileAndCulpritNamed) {
       {"second nodes", replaced(g, "$Elements", g.substr(g.find("$Nodes"), g.find("$Elements") - g.find("$Nodes")) + "$Elements"),
        corrupt + "a second $Nodes section ($Nodes, byte "},
       {"partitioned", replaced(g, "$Entities", "$PartitionedEntities"), "IoError: " + path.string() + ": partitioned meshes are not supported"},
+      // −2³¹ used to be negated (undefined behaviour, found by UBSan on the fuzz test).
+      {"physical tag -2^31", replaced(g, "1 1 1 1 7 0", "1 1 1 1 -2147483648 0"),
+       corrupt + "physical tag -2147483648 is out of range ($Entities, byte "},
+      {"2.2 physical tag -2^31", replaced(kTwoTets22, "102 4 2 7 1", "102 4 2 -2147483648 1"),
+       corrupt + "physical tag -2147483648 is out of range ($Elements, byte "},
       {"2.2 with 99 tags", replaced(kTwoTets22, "102 4 2 7 1", "102 4 99 7 1"), corrupt + "element 102 has 99 tags ($Elements, byte "},
       {"2.2 node tag twice", replaced(kTwoTets22, "\n12 1 0 0", "\n11 1 0 0"), corrupt + "node tag 11 appears twice ($Nodes, byte "},
       {"only triangles", replaced(replaced(g, "3 1 4 2\n101 11 12 13 14\n102 12 13 14 15", "2 1 2 1\n101 11 12 13"), "1 2 101 102", "1 1 101 101"),

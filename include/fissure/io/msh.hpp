@@ -56,7 +56,8 @@ void check_msh_output_path(const std::filesystem::path& path);
 /// .msh (see check_msh_output_path) or cannot be written; InvalidInput naming the view or set
 /// for a view with the wrong row count, component count or a non-finite value, a name holding
 /// a double quote or a control character, or tags that are not unique positive 31-bit integers.
-/// O(#tets log #tets) and about 100 bytes of memory per tet.
+/// O(#tets log #tets); holds the whole file in memory (about 100 bytes per tet, plus up to 25
+/// per view value in ASCII).
 void write_msh(const std::filesystem::path& path, const TetMesh& mesh,
                const std::vector<MshView>& views = {}, const MshWriteOptions& options = {});
 
