@@ -345,7 +345,13 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
       // (plus kMaxExtraTets) nor more than memory allows.
       const double next = kRefillShrink * cell_size;
       const double next_tets = volume / (kVolumePerCellSizeCubed * next * next * next);
-      if (refills++ == kMaxRefills || next_tets > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) break;
+      if (refills++ == kMaxRefills) break;
+      if (next_tets > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) {
+        problem += "; a finer bound would need about " + format_number(next_tets, 2) + " tets, more than " +
+                   format_number(kMaxTetsOverTarget) + " times the " + format_number(options.target_tets) +
+                   " asked for (ask for more)";
+        break;
+      }
       require_memory(tetrahedralize_memory_estimate(static_cast<int>(next_tets)), options.memory_limit_bytes,
                      "tetrahedralize: re-meshing " + source + " with " + format_number(next_tets, 3) + " tets");
       size_limit = kRefillShrink * cell_size;
@@ -367,8 +373,8 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
     cell_size = next;
   }
   if (!problem.empty()) {
-    throw NumericalFailure(source + ": " + problem + " after " + format_number(r.attempts) +
-                           " attempts (last size bound " + format_number(r.cell_size) + " m)");
+    throw NumericalFailure(source + ": after " + format_number(r.attempts) + " attempts (last size bound " +
+                           format_number(r.cell_size, 3) + " m) " + problem);
   }
   sink.report("tetrahedralize", 1.0);
 

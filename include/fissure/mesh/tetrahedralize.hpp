@@ -61,7 +61,9 @@ double tetrahedralize_memory_estimate(int target_tets);
 /// tets come out positively oriented, nodes in order of first use by the tets. Deterministic.
 /// Every attempt is checked against the surface (boundary nodes on it, volume, boundary area,
 /// bounding box); a mesh that does not fill it (a hollow plate) is re-made with a smaller size
-/// bound, and after kMaxRefills such attempts refused.
+/// bound, and refused after four such attempts or when that would need more than 10× the tets
+/// asked for (+1e5). A size bound the body cannot hold (a 24000-tet request on a 0.01 m thick
+/// 10 m plate) is refused up front with the count it needs.
 /// Throws InvalidInput for an empty or open surface or a request beyond `memory_limit_bytes`;
 /// NumericalFailure when CGAL produces no tets, a mesh that does not fill the surface (naming the
 /// surface and the figures) or a mesh below `refuse_below_dihedral_deg`; Cancelled when `cancel`
