@@ -20,11 +20,13 @@ constexpr std::size_t kMaxListedProblems = 5;
 
 }  // namespace
 
-double Crack::length() const {
+double polyline_length(const std::vector<Eigen::Vector2d>& points) {
   double total = 0.0;
   for (std::size_t i = 1; i < points.size(); ++i) total += (points[i] - points[i - 1]).norm();
   return total;
 }
+
+double Crack::length() const { return polyline_length(points); }
 
 double polygon_area(const std::vector<Eigen::Vector2d>& outline) {
   double twice = 0.0;

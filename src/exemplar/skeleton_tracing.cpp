@@ -31,11 +31,7 @@ struct Skeleton {
 
 }  // namespace
 
-double RawEdge::length() const {
-  double l = 0.0;
-  for (std::size_t i = 1; i < points.size(); ++i) l += (points[i] - points[i - 1]).norm();
-  return l;
-}
+double RawEdge::length() const { return polyline_length(points); }
 
 std::vector<std::vector<int>> PruningGraph::incidence() const {
   std::vector<std::vector<int>> inc(nodes.size());

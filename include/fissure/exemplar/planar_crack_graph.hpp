@@ -97,6 +97,9 @@ private:
   std::vector<char> m_on_border;
 };
 
+/// Length of a polyline: the sum of its segment lengths (0 for fewer than two points).
+double polyline_length(const std::vector<Eigen::Vector2d>& points);
+
 /// Signed area of a closed polygon (shoelace), positive counter-clockwise.
 double polygon_area(const std::vector<Eigen::Vector2d>& outline);
 
