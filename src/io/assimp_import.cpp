@@ -31,8 +31,8 @@ SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::str
   {
     const std::string bytes = read_file(path);
     const std::string ext = lower_ascii(path.extension().string());
-    if (ext == ".gltf") precheck_gltf(bytes, name);
-    else if (ext == ".glb") precheck_glb(bytes, name);
+    if (ext == ".gltf") precheck_gltf(bytes, name, path.parent_path());
+    else if (ext == ".glb") precheck_glb(bytes, name, path.parent_path());
     else if (ext == ".fbx") precheck_fbx(bytes, name);
     else throw IoError(name + ": '" + ext + "' is not read through assimp");
   }

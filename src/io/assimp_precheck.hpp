@@ -5,10 +5,17 @@
 // included) do not catch: its parsers recurse once per nesting level, so a file nested 200,000
 // levels deep ("extras": [[[[…]]]] in glTF, "A: { A: { …" in FBX) overflows the stack (SIGSEGV);
 // and its glTF 1.0 reader aborts or segfaults on 1–3 % of corrupted files, against none of the
-// same corruptions for glTF 2.0. So nesting is bounded and only glTF 2.0 is accepted; the rest
-// (accessor and buffer bounds, FBX semantics) assimp refuses cleanly by itself (measured:
-// docs/architecture.md, "Surface import").
+// same corruptions for glTF 2.0. So nesting is bounded and only glTF 2.0 is accepted. Under
+// AddressSanitizer a third showed: assimp's glTF 2.0 bounds checks wrap and miss strides and
+// sparse data, so it reads outside its buffers (silently in a release build); every byte range
+// it will read is checked here (gltf_bounds.cpp). FBX semantics assimp refuses cleanly by itself
+// (measured: docs/architecture.md, "Surface import").
 
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -17,11 +24,19 @@ namespace fissure::io_detail {
 /// Deepest nesting accepted: real glTF and FBX files nest less than 16 levels.
 inline constexpr int kMaxAssimpNesting = 64;
 
-/// Throws IoError naming `name` when `bytes` (the whole .gltf file) is not JSON, nests deeper
-/// than kMaxAssimpNesting, or is not glTF 2.x.
-void precheck_gltf(std::string_view bytes, const std::string& name);
-/// The same for a .glb file: its header must be GLB version 2 with a JSON chunk inside the file.
-void precheck_glb(std::string_view bytes, const std::string& name);
+/// Throws IoError naming `name` when `bytes` (the whole .gltf file, whose external buffers lie in
+/// `directory`) is not JSON, nests deeper than kMaxAssimpNesting, is not glTF 2.x, or has a
+/// buffer, buffer view or accessor reaching past its data (check_gltf_bounds).
+void precheck_gltf(std::string_view bytes, const std::string& name, const std::filesystem::path& directory);
+/// The same for a .glb file: its header must be GLB version 2 with a JSON chunk inside the file;
+/// the first buffer without a URI is its BIN chunk.
+void precheck_glb(std::string_view bytes, const std::string& name, const std::filesystem::path& directory);
+/// Every range assimp reads: each buffer's byteLength within its real data (external file size,
+/// decoded data: URI, or `glb_bin_length`); each buffer view within its buffer; each accessor's
+/// byteOffset + (count - 1) * stride + element size within its buffer view, sparse indices and
+/// values within theirs; mesh primitives and images referring to existing accessors and views.
+void check_gltf_bounds(const nlohmann::json& doc, const std::string& name, const std::filesystem::path& directory,
+                       std::optional<std::uint64_t> glb_bin_length);
 /// ASCII or binary FBX: nesting of scopes (ASCII) or records (binary) bounded; the binary
 /// record offsets must lie inside the file and inside their parent record.
 void precheck_fbx(std::string_view bytes, const std::string& name);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <unordered_map>
 
@@ -19,7 +20,10 @@ struct CellKey {
 };
 struct CellHash {
   std::size_t operator()(const CellKey& k) const {
-    return static_cast<std::size_t>(k.x * 73856093LL ^ k.y * 19349663LL ^ k.z * 83492791LL);
+    // Unsigned: the products of far-out cells wrap (in int64 that overflow is undefined, and
+    // UBSan stopped the assimp import fuzz test on a vertex in cell 2.1e16).
+    const auto u = [](std::int64_t c) { return static_cast<std::uint64_t>(c); };
+    return static_cast<std::size_t>(u(k.x) * 73856093u ^ u(k.y) * 19349663u ^ u(k.z) * 83492791u);
   }
 };
 
@@ -29,9 +33,12 @@ std::vector<int> merge_close_vertices(const Eigen::MatrixX3d& v, double toleranc
   std::vector<int> representative(static_cast<std::size_t>(v.rows()));
   std::unordered_map<CellKey, std::vector<int>, CellHash> grid;
   for (int i = 0; i < v.rows(); ++i) {
-    const CellKey key{static_cast<std::int64_t>(std::floor(v(i, 0) / tolerance)),
-                      static_cast<std::int64_t>(std::floor(v(i, 1) / tolerance)),
-                      static_cast<std::int64_t>(std::floor(v(i, 2) / tolerance))};
+    // Cells clamped to ±2^62 so that the conversion and the ±1 neighbours stay inside int64; far
+    // vertices sharing a clamped cell are still told apart by their distance.
+    const auto cell = [&](int k) {
+      return static_cast<std::int64_t>(std::clamp(std::floor(v(i, k) / tolerance), -0x1p62, 0x1p62));
+    };
+    const CellKey key{cell(0), cell(1), cell(2)};
     int found = i;
     for (int dx = -1; dx <= 1 && found == i; ++dx)
       for (int dy = -1; dy <= 1 && found == i; ++dy)

@@ -300,6 +300,55 @@ TEST(SurfaceImport, FaceWithAMissingVertexIsNamed) {
   }
 }
 
+// Byte ranges assimp 5.2.5 trusts in a glTF 2.0 file. On 0565c28 each of these hand-made
+// triangles was handed to assimp, which read outside its buffer: AddressSanitizer reported a
+// heap-buffer-overflow in Importer::ReadFile (the first is the fuzzed file it caught, an accessor
+// byteOffset of 2^64 - 1 that wraps assimp's size_t check to a read one byte before the buffer);
+// a release build read them silently. Each is now refused naming the field (the buffer longer
+// than its file assimp refused itself; it is here for the message).
+TEST(SurfaceImport, GltfRangesBeyondTheirDataAreRefused) {
+  const fs::path dir = test::fresh_temp_dir("import-gltf-bounds");
+  // A tetrahedron as 4 unindexed triangles: 12 VEC3 floats, 144 bytes.
+  const std::array<std::array<float, 3>, 4> p = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  std::string bin;
+  for (int corner : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
+    for (float c : p[corner]) test::put(bin, c, false);
+  }
+  write_file_atomically(dir / "t.bin", bin);
+  auto gltf = [&](const std::string& file, const std::string& accessor, const std::string& view, const std::string& buffer) {
+    write_file_atomically(dir / file, R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": )" + buffer +
+                                          R"(, "uri": "t.bin"}], "bufferViews": [{"buffer": 0, )" + view +
+                                          R"(}], "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", )" +
+                                          accessor + R"(}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})");
+    return dir / file;
+  };
+  SurfaceRepairReport report;
+  EXPECT_EQ(import_surface(gltf("ok.gltf", R"("count": 12)", R"("byteLength": 144)", "144"), report).face_count(), 4);
+
+  const std::pair<fs::path, std::string> bad[] = {
+      // The fuzzed file: byteOffset 2^64 - 1.
+      {gltf("wrap.gltf", R"("byteOffset": 18446744073709551615, "count": 12)", R"("byteLength": 144)", "144"),
+       "accessors[0] reaches byte beyond 2^64 of bufferViews[0], which holds 144"},
+      // assimp checks byteOffset + count x component size (60) and count x stride (144), never
+      // byteOffset + count x stride (156).
+      {gltf("offset.gltf", R"("byteOffset": 12, "count": 12)", R"("byteLength": 144)", "144"),
+       "accessors[0] reaches byte 156 of bufferViews[0], which holds 144"},
+      // A view whose offset + length wraps 64 bits to 144.
+      {gltf("view.gltf", R"("count": 12)", R"("byteOffset": 18446744073709551612, "byteLength": 148)", "144"),
+       "bufferViews[0] reaches byte beyond 2^64 of buffers[0], which holds 144"},
+      // A buffer claiming more than its file (assimp refuses this one too).
+      {gltf("buffer.gltf", R"("count": 12)", R"("byteLength": 156)", "156"), "buffers[0] claims 156 bytes, but 't.bin' holds 144"},
+      // Sparse values, copied without any bound.
+      {gltf("sparse.gltf", R"("count": 12, "sparse": {"count": 3, "indices": {"bufferView": 0, "componentType": 5121},
+          "values": {"bufferView": 0, "byteOffset": 120}})", R"("byteLength": 144)", "144"),
+       "accessors[0].sparse.values reaches byte 156 of bufferViews[0], which holds 144"}};
+  for (const auto& [path, words] : bad) {
+    const std::string e = import_error(path);
+    EXPECT_EQ(e, "IoError: " + path.string() + ": corrupt glTF: " + words) << e;
+  }
+}
+
 // Formats that were never fuzzed are refused by name instead of being handed to assimp:
 // assimp's Collada reader hung on 3 of 400 corrupted files.
 TEST(SurfaceImport, UnfuzzedFormatsAndSpecialFilesAreRefused) {
