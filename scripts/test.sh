@@ -25,5 +25,6 @@ if [[ "${FISSURE_SANITIZE_TESTS:-1}" != 0 ]]; then
   # detect_leaks stays on; halt_on_error makes a finding fail its test.
   export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:abort_on_error=1}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+  export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tests/sanitizers/lsan.supp}
   (cd "$asan_dir" && ctest --output-on-failure --parallel "$jobs" -L unit -LE no-sanitizer)
 fi
