@@ -178,6 +178,7 @@ double modal_memory_estimate(Eigen::Index dofs, Eigen::Index modes, Eigen::Index
 namespace {
 
 void write_pod(std::string& out, const void* data, std::size_t bytes) {
+  if (bytes == 0) return;  // an empty array's data() may be null
   out.append(static_cast<const char*>(data), bytes);
 }
 
@@ -361,6 +362,7 @@ ModalBasis ModalBasis::load(const fs::path& path, const Hash128& expected_key) {
   std::size_t pos = 0;
   auto take = [&](void* dst, std::size_t size) {
     if (pos + size > bytes.size()) throw IoError(name + ": modal basis file is truncated");
+    if (size == 0) return;  // an empty array's data() may be null, which memcpy must not see
     std::memcpy(dst, bytes.data() + pos, size);
     pos += size;
   };
