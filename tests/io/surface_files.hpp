@@ -58,16 +58,21 @@ inline std::string to_obj(const Polygons& p) {
   return out.str();
 }
 
-inline std::string to_off(const Polygons& p) {
-  std::ostringstream out;
-  out.precision(17);
-  out << "OFF\n# comment\n" << p.vertices.rows() << ' ' << p.faces.size() << " 0\n";
+// The vertex and face lines OFF and ASCII PLY share: "x y z" rows, then "n v0 v1 …" rows.
+inline void write_vertex_and_face_lines(std::ostream& out, const Polygons& p) {
   for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) out << p.vertices(v, 0) << ' ' << p.vertices(v, 1) << ' ' << p.vertices(v, 2) << '\n';
   for (const auto& f : p.faces) {
     out << f.size();
     for (int v : f) out << ' ' << v;
     out << '\n';
   }
+}
+
+inline std::string to_off(const Polygons& p) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "OFF\n# comment\n" << p.vertices.rows() << ' ' << p.faces.size() << " 0\n";
+  write_vertex_and_face_lines(out, p);
   return out.str();
 }
 
@@ -82,12 +87,7 @@ inline std::string to_ply(const Polygons& p) {
   std::ostringstream out;
   out.precision(17);
   out << ply_header(p, "ascii", "double");
-  for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) out << p.vertices(v, 0) << ' ' << p.vertices(v, 1) << ' ' << p.vertices(v, 2) << '\n';
-  for (const auto& f : p.faces) {
-    out << f.size();
-    for (int v : f) out << ' ' << v;
-    out << '\n';
-  }
+  write_vertex_and_face_lines(out, p);
   return out.str();
 }
 
