@@ -1,6 +1,8 @@
 // fissure compare A B: the paper's Eq. 5 between two patterns (images or stats JSON files).
 
 #include "cli_common.hpp"
+#include "image_options.hpp"
+#include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 #include "terminal_progress.hpp"
@@ -62,7 +64,7 @@ int run_compare(const CompareArgs& args) {
 
 void register_compare(CLI::App& app, Action& action) {
   auto args = std::make_shared<CompareArgs>();
-  auto* cmd = app.add_subcommand("compare", "Statistical distance between two crack patterns (paper Eq. 5)");
+  auto* cmd = app.add_subcommand("compare", std::string(command_info("compare").summary));
   cmd->add_option("A", args->a, "Traced image or statistics JSON (from fissure analyze --json)")->required();
   cmd->add_option("B", args->b, "Traced image or statistics JSON")->required();
   cmd->add_option("--weights", args->weights, "Weights of the fragment, crack and junction terms")->default_val("3,1,1");

@@ -1,6 +1,7 @@
 // fissure mesh INPUT --tets N -o out.msh
 
 #include "cli_common.hpp"
+#include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 #include "memory_estimate.hpp"
@@ -68,7 +69,7 @@ int run_mesh(const MeshArgs& args) {
 
 void register_mesh(CLI::App& app, Action& action) {
   auto args = std::make_shared<MeshArgs>();
-  auto* cmd = app.add_subcommand("mesh", "Tetrahedralise a closed surface (or a procedural tile) into a gmsh .msh file");
+  auto* cmd = app.add_subcommand("mesh", std::string(command_info("mesh").summary));
   cmd->add_option("INPUT", args->input,
                   "Surface file (OBJ, PLY, STL, glTF/GLB, FBX, OFF) or tile:W,H,T (metres; x, y centred, z from 0 to T)")
       ->required();

@@ -1,6 +1,8 @@
 // fissure modes MESH --E .. --nu .. --rho .. --count k [--fix SEL…] [--mass lumped|consistent]
 
 #include "cli_common.hpp"
+#include "fem_options.hpp"
+#include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 #include "memory_estimate.hpp"
@@ -74,7 +76,7 @@ int run_modes(const ModesArgs& args) {
 
 void register_modes(CLI::App& app, Action& action) {
   auto args = std::make_shared<ModesArgs>();
-  auto* cmd = app.add_subcommand("modes", "Lowest natural frequencies of a tet mesh, printed as JSON (Hz)");
+  auto* cmd = app.add_subcommand("modes", std::string(command_info("modes").summary));
   cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
   add_material_options(*cmd, args->material, true);
   cmd->add_option("--count", args->count, "Number of flexible modes")->required()->check(CLI::Range(1, 5000));

@@ -1,6 +1,8 @@
 // fissure solve MESH --E .. --nu .. [--rho ..] --fix SEL… --load SPEC… [--modes m] -o result.msh
 
 #include "cli_common.hpp"
+#include "fem_options.hpp"
+#include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 #include "memory_estimate.hpp"
@@ -135,8 +137,7 @@ int run_solve(const SolveArgs& args) {
 
 void register_solve(CLI::App& app, Action& action) {
   auto args = std::make_shared<SolveArgs>();
-  auto* cmd = app.add_subcommand("solve", "Static stress of a tet mesh under loads: writes displacement, stress and max "
-                                          "principal stress as gmsh views");
+  auto* cmd = app.add_subcommand("solve", std::string(command_info("solve").summary));
   cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
   add_material_options(*cmd, args->material, false);
   cmd->add_option("--fix", args->fix,

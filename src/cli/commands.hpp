@@ -1,6 +1,7 @@
 #pragma once
 // Subcommands of the `fissure` tool. Each register_* adds its subcommand to the app and stores
-// the function that runs it; main() runs the chosen one and turns core errors into exit codes.
+// the function that runs it; run_command() (command_main.hpp) runs it and turns core errors into
+// exit codes.
 
 #include <CLI/CLI.hpp>
 
@@ -22,7 +23,6 @@ enum ExitCode : int {
   kExitCancelled = 6,     // Cancelled
 };
 
-void register_version(CLI::App& app, Action& action);
 void register_mesh(CLI::App& app, Action& action);
 void register_solve(CLI::App& app, Action& action);
 void register_modes(CLI::App& app, Action& action);

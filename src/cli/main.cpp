@@ -1,97 +1,100 @@
-// `fissure`: the command-line front end. A thin layer over the core: parse, call, report.
+// `fissure`: the dispatcher. It answers --help, --version and `version` itself and hands every
+// other command to its own executable, libexec/fissure/fissure-<command>, with the same argv
+// (execv: same process, same signals and exit code). A command thus loads only the libraries it
+// uses: mesh no sparse solver, solve no image codec, and `--version` nothing but the C++ runtime
+// (docs/architecture.md, "Start-up"). Deliberately free of CLI11 and the core modules.
 
-#include "commands.hpp"
-#include "interruption.hpp"
+#include "command_table.hpp"
 
-#include "fissure/base/error.hpp"
-
+#include <algorithm>
+#include <cerrno>
 #include <cstring>
-#include <exception>
+#include <filesystem>
 #include <iostream>
-#include <new>
 #include <string>
+#include <string_view>
+#include <system_error>
+#include <unistd.h>
 
 namespace {
 
-using namespace fissure::cli;
+using fissure::cli::kCommands;
 
-// Every failure is one line: a message from a library may hold newlines (CLI11's own, or a
-// core message quoting a file).
-std::string one_line(std::string text) {
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r' || text.back() == ' ')) text.pop_back();
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
+constexpr int kExitInternal = 1;  // the exit codes of commands.hpp, which needs CLI11
+constexpr int kExitUsage = 2;
+
+std::string command_list() {
+  std::string list;
+  for (const auto& command : kCommands) list += (list.empty() ? "" : ", ") + std::string(command.name);
+  return list;
 }
 
-// "mesh, solve, modes, analyze, compare, version", in the order they were registered.
-std::string command_list(CLI::App& app) {
-  std::string list;
-  for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
-    list += (list.empty() ? "" : ", ") + sub->get_name();
+void print_help() {
+  std::cout << "Fissure: example-based fracture modelling\n"
+               "Usage: fissure [OPTIONS] COMMAND [ARGS...]\n\n"
+               "Options:\n"
+               "  -h,--help                   Print this help message and exit\n"
+               "  --version                   Display program version information and exit\n\n"
+               "Commands (fissure COMMAND --help for each):\n";
+  for (const auto& command : kCommands) {
+    std::string name(command.name);
+    name.resize(std::max<std::size_t>(name.size() + 1, 28), ' ');
+    std::cout << "  " << name << command.summary << '\n';
   }
-  return list;
+}
+
+int usage_error(const std::string& message) {
+  std::cerr << "fissure: " << message << '\n';
+  return kExitUsage;
+}
+
+// `fissure version [--help]`: the one command without an executable of its own.
+int version_command(int argc, char** argv) {
+  if (argc == 2) {
+    std::cout << "fissure " << FISSURE_VERSION << '\n';
+    return 0;
+  }
+  const std::string_view arg = argv[2];
+  if (argc == 3 && (arg == "-h" || arg == "--help")) {
+    std::cout << fissure::cli::command_info("version").summary << "\nUsage: fissure version [OPTIONS]\n\n"
+              << "Options:\n  -h,--help                   Print this help message and exit\n";
+    return 0;
+  }
+  return usage_error("version takes no arguments, got '" + std::string(arg) + "' (see fissure version --help)");
+}
+
+// libexec/fissure/ beside the bin/ directory this executable is in, found through /proc so that
+// a symlink to bin/fissure or a relative PATH entry still finds the real install.
+std::filesystem::path libexec_directory() {
+  std::error_code error;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+  if (error) return {};
+  return self.parent_path().parent_path() / "libexec" / "fissure";
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  install_interrupt_handlers();
-  CLI::App app{"Fissure: example-based fracture modelling"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", FISSURE_VERSION);
-
-  Action action;
-  register_mesh(app, action);
-  register_solve(app, action);
-  register_modes(app, action);
-  register_analyze(app, action);
-  register_compare(app, action);
-  register_version(app, action);
-
-  // CLI11 answers an unknown command with "A subcommand is required": name it instead.
-  if (argc < 2 || (argv[1][0] != '-' && app.get_subcommands([&](CLI::App* sub) { return sub->check_name(argv[1]); }).empty())) {
-    std::cerr << "fissure: " << (argc < 2 ? std::string("a command is required") : "unknown command '" + std::string(argv[1]) + "'")
-              << " (commands: " << command_list(app) << ")\n";
-    return kExitUsage;
+  if (argc < 2) return usage_error("a command is required (commands: " + command_list() + ")");
+  const std::string_view first = argv[1];
+  if (first == "-h" || first == "--help") {
+    print_help();
+    return 0;
   }
-  // CLI11's messages, in one line that says where help is.
-  app.failure_message([](const CLI::App* top, const CLI::Error& e) {
-    const auto chosen = top->get_subcommands();
-    const std::string help = chosen.empty() ? "fissure --help" : "fissure " + chosen.front()->get_name() + " --help";
-    return "fissure: " + one_line(e.what()) + " (see " + help + ")\n";
-  });
-
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
+  if (first == "--version") {
+    std::cout << FISSURE_VERSION << '\n';
+    return 0;
   }
+  if (first == "version") return version_command(argc, argv);
+  if (first.starts_with('-')) return usage_error("unknown option '" + std::string(first) + "' (see fissure --help)");
+  bool known = false;
+  for (const auto& command : kCommands) known = known || command.name == first;
+  if (!known) return usage_error("unknown command '" + std::string(first) + "' (commands: " + command_list() + ")");
 
-  try {
-    return action ? action() : kExitUsage;
-  } catch (const fissure::MemoryLimitExceeded& e) {
-    // Every command that can be refused for its memory estimate takes --allow-large.
-    std::cerr << "fissure: invalid input: " << one_line(e.what()) << "; --allow-large tries anyway\n";
-    return kExitInvalidInput;
-  } catch (const fissure::InvalidInput& e) {
-    std::cerr << "fissure: invalid input: " << one_line(e.what()) << '\n';
-    return kExitInvalidInput;
-  } catch (const fissure::IoError& e) {
-    std::cerr << "fissure: " << one_line(e.what()) << '\n';
-    return kExitIo;
-  } catch (const fissure::NumericalFailure& e) {
-    std::cerr << "fissure: numerical failure: " << one_line(e.what()) << '\n';
-    return kExitNumerical;
-  } catch (const fissure::Cancelled&) {
-    std::cerr << "fissure: cancelled\n";
-    return kExitCancelled;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "fissure: out of memory (try a smaller request)\n";
-    return kExitInternal;
-  } catch (const std::exception& e) {
-    std::cerr << "fissure: internal error: " << one_line(e.what()) << '\n';
-    return kExitInternal;
-  }
+  const std::filesystem::path executable = libexec_directory() / ("fissure-" + std::string(first));
+  execv(executable.c_str(), argv);
+  // Only reached when the installation is broken (a missing or non-executable file).
+  std::cerr << "fissure: cannot run the " << first << " command: " << executable.string() << ": " << std::strerror(errno)
+            << '\n';
+  return kExitInternal;
 }

@@ -87,7 +87,7 @@ void BM_AnalyzeExemplarPeakMemory(benchmark::State& state) {
   for (auto _ : state) peak = bench::child_peak_rss_mb({FISSURE_BINARY_DIR "/bin/fissure", "analyze", path.string()});
   if (peak < 0) state.SkipWithError("fissure analyze failed");
   // What the process holds before any work: the shared libraries `fissure` loads at start.
-  const double baseline = bench::child_peak_rss_mb({FISSURE_BINARY_DIR "/bin/fissure", "--help"});
+  const double baseline = bench::child_peak_rss_mb({FISSURE_BINARY_DIR "/bin/fissure", "analyze", "--help"});
   state.counters["peak_rss_mb"] = peak;
   state.counters["cli_baseline_mb"] = baseline;
   state.counters["analysis_mb"] = peak - baseline;

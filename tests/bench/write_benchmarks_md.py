@@ -61,6 +61,13 @@ SECTION_NOTES = {
                      "The modal solve and the stress kernel are bound by the first, assembly and factorisation "
                      "by the second. Shared virtual machines differ from day to day by up to 2×: compare a "
                      "regression against this section of the same run.",
+    "bench_startup": "What every command pays before any work, from exec to exit: `fissure --version` "
+                     "(answered by the dispatcher) and each command's `--help` (its own executable started and "
+                     "its options parsed). `peak_rss_mb`: the process's peak resident memory; `shared_libs`: "
+                     "distinct shared libraries the loader initialised (`LD_DEBUG=libs`). Targets: --version "
+                     "≤ 50 ms, ≤ 30 MB, ≤ 60 libraries; no command loads a library it does not use. Before the "
+                     "split into one executable per command every command initialised 44 libraries "
+                     "(204 before issue 8's own MSH writer and image decoders).",
     "bench_exemplar": "Exemplar analysis: traced mask to crack graph to statistics. Second argument: 0 = a "
                       "hierarchical network of orthogonal cracks (≈ 1,100 cracks; the issue's targets: 1024² ≤ 50 ms, "
                       "4096² ≤ 1 s, ≤ 300 MB), 1 = a dense oblique grid (≈ 29,000 crossings at 4096², thousands "
