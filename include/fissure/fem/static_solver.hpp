@@ -45,7 +45,7 @@ class StaticSolver {
 public:
   /// Checks the supports for mechanisms (InvalidInput), restricts K to the free dofs and factorises
   /// it (NumericalFailure if not positive definite). `fixed_dofs` (dof 3·v + i) empty = free body.
-  /// Cost: one CHOLMOD factorisation (≈ 80 ms at 24K tets).
+  /// Cost: one CHOLMOD factorisation (~0.1 s at 24K tets: bench_fem in docs/BENCHMARKS.md).
   StaticSolver(std::shared_ptr<const ElasticBody> body, std::vector<int> fixed_dofs,
                const StaticSolverOptions& options = {});
 
@@ -54,7 +54,7 @@ public:
   /// max_residual, or when the displacement overflows double precision (a load far too large for
   /// the stiffness: said so, not blamed on the mesh). Any finite load whose solution is
   /// representable is solved: f is scaled by a power of two first, so ‖f‖ never overflows.
-  /// Cost: 2 triangular solves per refinement step (≈ 3 ms at 24K tets). Thread-safe: any number
+  /// Cost: 2 triangular solves per refinement step (milliseconds at 24K tets). Thread-safe: any number
   /// of threads may solve on one solver at once (each solve has its own CHOLMOD workspace), with
   /// the same bits as a serial solve.
   StaticSolution solve(const Eigen::VectorXd& f) const;

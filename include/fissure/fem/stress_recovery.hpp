@@ -56,7 +56,7 @@ private:
 
 /// The recovered stress state of every tet in one call: raw stress of `body` for `u`, smoothed by
 /// `recovery` (smoothed_tets), then λ_max and its direction per tet by the vectorised closed forms
-/// of stress.hpp (same guarantees). 1.7 ms CPU for the 21.5K-tet tile on one core (bench_fem). Throws
+/// of stress.hpp (same guarantees). About a millisecond per 20K tets on one core (bench_fem, docs/BENCHMARKS.md). Throws
 /// InvalidInput when `recovery` was built for another mesh, or as compute_stress. Thread-safe.
 void compute_principal_stress(const ElasticBody& body, const Eigen::VectorXd& u, const StressRecovery& recovery,
                               PrincipalStressField& out);

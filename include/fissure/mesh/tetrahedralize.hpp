@@ -69,7 +69,7 @@ double tetrahedralize_memory_estimate(int target_tets);
 /// surface and the figures) or a mesh below `refuse_below_dihedral_deg`; Cancelled when `cancel`
 /// is set: CGAL's refinement polls it (through Mesh_3's stop flag) and stops within
 /// milliseconds; perturbation and exudation do not and end within their time limits.
-/// Reports progress a few times per second during refinement. Cost: ≈ 0.6 s for 24K tets
+/// Reports progress a few times per second during refinement. Cost: of the order of a second for 24K tets
 /// (performance.md §2). Runs on the calling thread only.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report = nullptr, ProgressSink* progress = nullptr,
