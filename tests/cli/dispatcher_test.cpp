@@ -26,7 +26,10 @@ std::set<std::string> initialised_libraries(const std::string& args) {
   const std::string marker = "calling init: ";
   for (std::string line; std::getline(lines, line);) {
     const auto at = line.find(marker);
-    if (at != std::string::npos) names.insert(fs::path(line.substr(at + marker.size())).filename().string());
+    if (at == std::string::npos) continue;
+    const std::string name = fs::path(line.substr(at + marker.size())).filename().string();
+    // A sanitizer build's runtimes are not the command's choice.
+    if (name.rfind("libasan", 0) != 0 && name.rfind("libubsan", 0) != 0 && name.rfind("libtsan", 0) != 0) names.insert(name);
   }
   return names;
 }
