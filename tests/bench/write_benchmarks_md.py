@@ -17,7 +17,7 @@ SECTION_NOTES = {
     "bench_mesh": "CGAL Mesh_3 tetrahedralisation of the 1 × 1 × 0.05 m tile (facet angle 20°, perturb + exude "
                   "to 12° on the accepted refinement only), one call per size. Target: 24K tets ≤ 1 s.",
     "bench_prepare_body": "Per-body preparation, one call per body and size: tetrahedralise + assemble K (the "
-                          "ElasticBody) + factor K with supports (the StaticSolver), each stage's seconds as a "
+                          "ElasticBody) + factor K with supports (the StaticSolver), each stage's process CPU seconds as a "
                           "counter, with the tet count, the meshing attempts and the min dihedral angle. body 0 = "
                           "the 1 × 1 × 0.05 m tile (corner supports), 1 = a unit icosphere (polar cap held), 2 = the "
                           "tile bent to a 1 m radius (ends held). Targets (issue 9): ≤ 1 s at 7K tets, ≤ 1.7 s at "
