@@ -25,6 +25,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <unordered_map>
 
 namespace fissure {
@@ -127,35 +128,53 @@ Polyhedron to_polyhedron(const SurfaceMesh& surface, double scale) {
   return p;
 }
 
-// One CGAL run at size bound `size` on the scaled `polyhedron`; the nodes come back multiplied by
-// `unscale` (a power of two, so exactly). Returns an empty mesh when `cancel` stopped it.
-TetMesh mesh_once(const Polyhedron& polyhedron, const TetrahedralizeOptions& options, double size, double expected_tets,
-                  double unscale, const std::string& source, ProgressSink& sink, const CancelToken* cancel, double from, double to) {
+// One Delaunay refinement: CGAL's domain and the complex it fills, kept together because sliver
+// removal needs both.
+struct Refinement {
+  explicit Refinement(const Polyhedron& polyhedron) : domain(polyhedron) {}
+  Domain domain;
+  Complex c3t3;
+};
+
+// Refinement alone at size bound `size` on the scaled `polyhedron` (no sliver removal: an attempt
+// judged by its tet count is refined only, and only the accepted one is optimised, see
+// remove_slivers). Returns null when `cancel` stopped it.
+std::unique_ptr<Refinement> refine(const Polyhedron& polyhedron, const TetrahedralizeOptions& options, double size,
+                                   double expected_tets, ProgressSink& sink, const CancelToken* cancel, double from,
+                                   double to) {
   using namespace CGAL::parameters;
   CGAL::get_default_random() = CGAL::Random(options.seed);
-  Domain domain(polyhedron);
-  domain.detect_features(options.feature_angle_deg);
-  Complex c3t3;
+  auto r = std::make_unique<Refinement>(polyhedron);
+  r->domain.detect_features(options.feature_angle_deg);
   const double expected_vertices = std::max(1.0, expected_tets / kTetsPerVertex);
-  RefinementWatch watch(sink, cancel, c3t3.triangulation(), expected_vertices, from, from + 0.8 * (to - from));
+  RefinementWatch watch(sink, cancel, r->c3t3.triangulation(), expected_vertices, from, to);
   const WatchedSize sized{size, &watch};
   const Criteria criteria(edge_size = size, facet_angle = options.facet_angle_deg, facet_size = sized,
                           facet_distance = size / 4.0,
                           cell_radius_edge_ratio = options.cell_radius_edge_ratio, cell_size = sized);
-  CGAL::make_mesh_3_bp(c3t3, domain, criteria, no_lloyd(), no_odt(), no_perturb(), no_exude(),
+  CGAL::make_mesh_3_bp(r->c3t3, r->domain, criteria, no_lloyd(), no_odt(), no_perturb(), no_exude(),
                        mesh_3_options(pointer_to_stop_atomic_boolean = watch.stop_flag()));
-  if (cancel && cancel->cancelled()) return TetMesh();
-  // Sliver removal, bounded by its time limits. Neither pass reads a stop flag: a cancel that
-  // arrives during them is honoured when they end.
-  sink.report("tetrahedralize", from + 0.8 * (to - from));
-  CGAL::perturb_mesh_3(c3t3, domain, time_limit = options.perturb_time_limit_s, sliver_bound = options.sliver_bound_deg);
-  if (cancel && cancel->cancelled()) return TetMesh();
-  sink.report("tetrahedralize", from + 0.9 * (to - from));
-  CGAL::exude_mesh_3(c3t3, time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg);
-  if (cancel && cancel->cancelled()) return TetMesh();
+  if (cancel && cancel->cancelled()) return nullptr;
+  return r;
+}
 
-  // Nodes numbered in order of first use by the cells, cells in the complex's order: both are
-  // fixed by the (deterministic) triangulation.
+// Sliver removal, bounded by its time limits. Neither pass reads a stop flag: a cancel that
+// arrives during them is honoured when they end. CGAL's generator is reseeded so the result
+// depends only on the accepted refinement, not on the attempts before it.
+void remove_slivers(Refinement& r, const TetrahedralizeOptions& options, ProgressSink& sink, double from, double to) {
+  using namespace CGAL::parameters;
+  CGAL::get_default_random() = CGAL::Random(options.seed);
+  sink.report("tetrahedralize", from);
+  CGAL::perturb_mesh_3(r.c3t3, r.domain, time_limit = options.perturb_time_limit_s,
+                       sliver_bound = options.sliver_bound_deg);
+  sink.report("tetrahedralize", from + 0.5 * (to - from));
+  CGAL::exude_mesh_3(r.c3t3, time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg);
+}
+
+// The complex's cells as a TetMesh, nodes multiplied by `unscale` (a power of two, so exactly).
+// Nodes are numbered in order of first use by the cells, cells in the complex's order: both are
+// fixed by the (deterministic) triangulation.
+TetMesh to_tet_mesh(const Complex& c3t3, double unscale, const std::string& source) {
   std::unordered_map<Triangulation::Vertex_handle, int> index;
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector4i> cells;
@@ -330,47 +349,78 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
   TetMesh mesh;
   int count_attempts = 0, refills = 0;
   std::string problem;
+  // A mesh that does not fill the surface: re-mesh with a smaller bound, which means more tets,
+  // never more than kMaxTetsOverTarget times the request (plus kMaxExtraTets) nor more than
+  // memory allows. Returns false when it gives up (`problem` then says why).
+  const auto shrink_for_refill = [&]() {
+    const double next = kRefillShrink * cell_size;
+    const double next_tets = volume / (kVolumePerCellSizeCubed * next * next * next);
+    if (refills++ == kMaxRefills) return false;
+    if (next_tets > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) {
+      problem += "; a finer bound would need about " + format_number(next_tets, 2) + " tets, more than " +
+                 format_number(kMaxTetsOverTarget) + " times the " + format_number(options.target_tets) +
+                 " asked for (ask for more)";
+      return false;
+    }
+    require_memory(tetrahedralize_memory_estimate(static_cast<int>(next_tets)), options.memory_limit_bytes,
+                   "tetrahedralize: re-meshing " + source + " with " + format_number(next_tets, 3) + " tets");
+    size_limit = next;
+    cell_size = next;
+    previous_count = 0.0;
+    return true;
+  };
   for (int attempt = 0;; ++attempt) {
     if (cancel) cancel->throw_if_cancelled();
     const double from = 1.0 - std::ldexp(1.0, -attempt), to = 1.0 - std::ldexp(1.0, -attempt - 1);
+    const double optimise_from = from + 0.8 * (to - from);
     sink.report("tetrahedralize", from);
     const double expected = volume / (kVolumePerCellSizeCubed * cell_size * cell_size * cell_size);
-    mesh = mesh_once(polyhedron, options, scale * cell_size, expected, unscale, source, sink, cancel, from, to);
+    // Refine only, and judge the attempt by its count and fill: sliver removal, which costs up
+    // to several times the refinement on thin plates (docs/architecture.md), moves or drops only
+    // a few percent of the tets and is spent on the accepted refinement alone.
+    std::unique_ptr<Refinement> refinement =
+        refine(polyhedron, options, scale * cell_size, expected, sink, cancel, from, optimise_from);
     if (cancel) cancel->throw_if_cancelled();
     r.attempts = attempt + 1;
     r.cell_size = cell_size;
-    problem = fill_problem(mesh, tree, scale, volume, area, box, cell_size / 4.0);
+    // The refined complex may still hold a flat tet that sliver removal would remove (seen on a
+    // 0.05 m thick curved shell): TetMesh refuses it, and such an attempt is judged by its count
+    // alone. Whatever is accepted is checked after sliver removal below.
+    try {
+      problem = fill_problem(to_tet_mesh(refinement->c3t3, unscale, source), tree, scale, volume, area, box,
+                             cell_size / 4.0);
+    } catch (const NumericalFailure&) {
+      problem.clear();
+    }
     if (!problem.empty()) {
-      // A smaller bound means more tets: never more than kMaxTetsOverTarget times the request
-      // (plus kMaxExtraTets) nor more than memory allows.
-      const double next = kRefillShrink * cell_size;
-      const double next_tets = volume / (kVolumePerCellSizeCubed * next * next * next);
-      if (refills++ == kMaxRefills) break;
-      if (next_tets > kMaxTetsOverTarget * options.target_tets + kMaxExtraTets) {
-        problem += "; a finer bound would need about " + format_number(next_tets, 2) + " tets, more than " +
-                   format_number(kMaxTetsOverTarget) + " times the " + format_number(options.target_tets) +
-                   " asked for (ask for more)";
-        break;
-      }
-      require_memory(tetrahedralize_memory_estimate(static_cast<int>(next_tets)), options.memory_limit_bytes,
-                     "tetrahedralize: re-meshing " + source + " with " + format_number(next_tets, 3) + " tets");
-      size_limit = kRefillShrink * cell_size;
-      cell_size = size_limit;
-      previous_count = 0.0;
+      if (!shrink_for_refill()) break;
       continue;
     }
-    const double count = mesh.tet_count();
-    if (std::abs(count / options.target_tets - 1.0) <= options.count_tolerance || ++count_attempts == kMaxAttempts) break;
-    double p = 3.0;
-    if (previous_count > 0.0 && previous_count != count) {
-      p = std::clamp(-std::log(count / previous_count) / std::log(cell_size / previous_size), 1.0, 4.0);
+    const double count = static_cast<double>(refinement->c3t3.number_of_cells_in_complex());
+    bool accept = std::abs(count / options.target_tets - 1.0) <= options.count_tolerance ||
+                  ++count_attempts == kMaxAttempts;
+    if (!accept) {
+      double p = 3.0;
+      if (previous_count > 0.0 && previous_count != count) {
+        p = std::clamp(-std::log(count / previous_count) / std::log(cell_size / previous_size), 1.0, 4.0);
+      }
+      const double next = std::min(size_limit, cell_size * std::pow(count / options.target_tets, 1.0 / p));
+      // Too many tets at the largest bound the body holds: a coarser mesh would be hollow.
+      accept = next == cell_size;
+      if (!accept) {
+        previous_size = cell_size;
+        previous_count = count;
+        cell_size = next;
+        continue;
+      }
     }
-    previous_size = cell_size;
-    previous_count = count;
-    const double next = std::min(size_limit, cell_size * std::pow(count / options.target_tets, 1.0 / p));
-    // Too many tets at the largest bound the body holds: a coarser mesh would be hollow.
-    if (next == cell_size) break;
-    cell_size = next;
+    remove_slivers(*refinement, options, sink, optimise_from, to);
+    if (cancel) cancel->throw_if_cancelled();
+    mesh = to_tet_mesh(refinement->c3t3, unscale, source);
+    // Perturbation moves boundary nodes along the surface and exudation changes which cells are
+    // kept: the optimised mesh is checked again.
+    problem = fill_problem(mesh, tree, scale, volume, area, box, cell_size / 4.0);
+    if (problem.empty() || !shrink_for_refill()) break;
   }
   if (!problem.empty()) {
     throw NumericalFailure(source + ": after " + format_number(r.attempts) + " attempts (last size bound " +

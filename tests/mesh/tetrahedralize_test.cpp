@@ -3,6 +3,7 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/mesh/tile.hpp"
 
+#include "curved_shapes.hpp"
 #include "test_shapes.hpp"
 
 #include <gtest/gtest.h>
@@ -273,10 +274,12 @@ private:
 };
 
 // Progress comes from inside CGAL's refinement, not only between attempts (main: one report per
-// attempt and one at the end), and rises monotonically to 1.
+// attempt and one at the end), and rises monotonically to 1. The watch reports at most every
+// 200 ms, so the request must refine for longer than that: 100K tets in a cube take about a
+// second (30K took 0.3 s once refinement alone was timed, too close to the interval).
 TEST(Tetrahedralize, ReportsProgressDuringRefinement) {
   TetrahedralizeOptions options;
-  options.target_tets = 30000;
+  options.target_tets = 100000;
   RecordingProgress progress;
   TetrahedralizeReport report;
   tetrahedralize(make_tile_surface({1, 1, 1}), options, &report, &progress);
@@ -309,45 +312,10 @@ TEST(Tetrahedralize, CancelFromAnotherThreadStopsRefinement) {
   EXPECT_LT(ended - cancelled_at, std::chrono::seconds(2));
 }
 
-// An icosphere of radius 1 (20 · 4^levels faces), outward-oriented: a curved surface whose
-// edges (dihedral deviation ≈ 10° at 3 levels) are below the feature angle, so the tet boundary
-// cuts across them.
-SurfaceMesh icosphere(int levels) {
-  const double g = (1.0 + std::sqrt(5.0)) / 2.0;
-  std::vector<Eigen::Vector3d> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                    {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-  for (auto& p : v) p.normalize();
-  std::vector<Eigen::Vector3i> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                    {11, 10, 2}, {10, 7, 6}, {7, 1, 8},   {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-                                    {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-  for (int level = 0; level < levels; ++level) {
-    std::map<std::pair<int, int>, int> middle;
-    auto mid = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      const auto [it, inserted] = middle.try_emplace(key, static_cast<int>(v.size()));
-      if (inserted) v.push_back((v[a] + v[b]).normalized());
-      return it->second;
-    };
-    std::vector<Eigen::Vector3i> next;
-    for (const auto& t : f) {
-      const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-      next.insert(next.end(), {{t[0], ab, ca}, {t[1], bc, ab}, {t[2], ca, bc}, {ab, bc, ca}});
-    }
-    f = std::move(next);
-  }
-  SurfaceMesh s;
-  s.source_name = "icosphere";
-  s.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  s.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (std::size_t i = 0; i < f.size(); ++i) s.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
-  return s;
-}
-
 // The surface check must not refuse a legitimate mesh of a curved surface, where the tet
 // boundary only approximates the input, coarse or fine.
 TEST(Tetrahedralize, CurvedSurfacePassesTheFillCheck) {
-  const SurfaceMesh sphere = icosphere(3);
+  const SurfaceMesh sphere = test::icosphere(3);
   const double volume = signed_volume(sphere);
   ASSERT_NEAR(volume, 4.0 / 3.0 * M_PI, 0.05);
   TetrahedralizeOptions options;
@@ -406,8 +374,10 @@ TEST(Tetrahedralize, ThinFinIsRemeshedUntilFilledOrRefused) {
     EXPECT_NEAR(m.total_volume(), 1.1, 1e-12);
     EXPECT_NEAR(boundary_area(m), surface_area(s), 1e-12);
   }
-  const SurfaceMesh s = prism({{0, 0}, {2, 0}, {2, 0.04}, {1, 0.04}, {1, 1}, {0, 1}}, 1.0, "block with fin");
-  ASSERT_NEAR(signed_volume(s), 1.04, 1e-14);
+  // A 0.02 m fin: at the 20° facet angle a 0.04 m fin is filled at ≈ 99K tets, inside the
+  // 10 × 2000 + 1e5 allowed, so the refusal needs a fin that would take more.
+  const SurfaceMesh s = prism({{0, 0}, {2, 0}, {2, 0.02}, {1, 0.02}, {1, 1}, {0, 1}}, 1.0, "block with fin");
+  ASSERT_NEAR(signed_volume(s), 1.02, 1e-14);
 
   options.target_tets = 2000;
   try {
@@ -416,7 +386,7 @@ TEST(Tetrahedralize, ThinFinIsRemeshedUntilFilledOrRefused) {
   } catch (const NumericalFailure& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("block with fin: after 3 attempts"), std::string::npos) << what;
-    EXPECT_NE(what.find("instead of 8.08 m^2"), std::string::npos) << what;
+    EXPECT_NE(what.find("instead of 8.04 m^2"), std::string::npos) << what;
     EXPECT_NE(what.find("more than 10 times the 2000 asked for"), std::string::npos) << what;
   }
 }
@@ -436,6 +406,45 @@ TEST(Tetrahedralize, RefusesBadInputAndHonoursCancel) {
   CancelToken cancel;
   cancel.cancel();
   EXPECT_THROW(tetrahedralize(make_tile_surface({1, 1, 1}), options, nullptr, nullptr, &cancel), Cancelled);
+}
+
+
+// Issue 9: the count lands within count_tolerance of the request and perturbation + exudation
+// reach 10° on the thin tile and on two curved bodies, a bulky one (sphere) and one as thin as
+// the tile (curved shell). The 7K tile used to take 2.5 s: a first attempt, optimised and then
+// discarded for a count 26 % high, and a perturber stuck on tets spanning the plate. The same
+// thin request twice gives the same bytes (the accepted refinement is optimised from a reseeded
+// generator, whatever attempts came before).
+TEST(Tetrahedralize, CountAndQualityOnThinAndCurvedBodies) {
+  struct Case {
+    SurfaceMesh surface;
+    int target;
+  };
+  const std::vector<Case> cases = {{make_tile_surface({1.0, 1.0, 0.05}), 7000},
+                                   {make_tile_surface({1.0, 1.0, 0.05}), 24000},
+                                   {test::icosphere(3), 7000},
+                                   {test::icosphere(3), 24000},
+                                   {test::curved_shell(), 7000},
+                                   {test::curved_shell(), 24000}};
+  // The shell holds the tile's 0.05 m³, less its chords' 4e-5 (curved_shapes.hpp).
+  ASSERT_NEAR(signed_volume(test::curved_shell()), 0.05, 0.05 * 1e-4);
+  for (const Case& c : cases) {
+    TetrahedralizeOptions options;
+    options.target_tets = c.target;
+    TetrahedralizeReport report;
+    const TetMesh m = tetrahedralize(c.surface, options, &report);
+    const std::string what = c.surface.source_name + " at " + std::to_string(c.target);
+    EXPECT_LE(std::abs(static_cast<double>(m.tet_count()) / c.target - 1.0), options.count_tolerance) << what;
+    EXPECT_GE(report.quality.min_dihedral_deg, 10.0) << what;
+    EXPECT_TRUE(report.warnings.empty()) << what;
+    EXPECT_EQ(m.component_count(), 1) << what;
+  }
+  TetrahedralizeOptions options;
+  options.target_tets = 7000;
+  const TetMesh a = tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options);
+  const TetMesh b = tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options);
+  EXPECT_TRUE(a.nodes() == b.nodes());  // bitwise
+  EXPECT_TRUE(a.tets() == b.tets());
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 /// Tetrahedralisation of a closed surface with CGAL Mesh_3 (Delaunay refinement, sharp features
-/// protected, then perturbation and exudation to remove slivers).
+/// protected, then perturbation and exudation to remove slivers from the accepted refinement).
 
 #include "fissure/base/progress.hpp"
 #include "fissure/mesh/surface_mesh.hpp"
@@ -13,12 +13,15 @@
 namespace fissure {
 
 struct TetrahedralizeOptions {
-  /// Wanted number of tets. The result lands within ±`count_tolerance` of it (one corrective
-  /// re-mesh is made when the first attempt misses).
+  /// Wanted number of tets. The result lands within ±`count_tolerance` of it: an attempt that
+  /// misses is refined again with a corrected size bound (up to three attempts), and only the
+  /// accepted one has its slivers removed.
   int target_tets = 24000;
   double count_tolerance = 0.25;
-  /// Facets: minimum angle (degrees) of surface triangles. ≤ 30 guarantees termination.
-  double facet_angle_deg = 25.0;
+  /// Facets: minimum angle (degrees) of surface triangles. ≤ 30 guarantees termination. 20, not
+  /// CGAL's usual 25: on a plate one or two tets thick, 25° leaves tets spanning the thickness
+  /// with all four nodes on the faces that the perturber fights for seconds (docs/architecture.md).
+  double facet_angle_deg = 20.0;
   /// Cells: circumradius / shortest edge bound; ≥ 2 guarantees termination. Removes every bad
   /// shape except slivers, which perturb and exude then attack.
   double cell_radius_edge_ratio = 3.0;
@@ -69,8 +72,9 @@ double tetrahedralize_memory_estimate(int target_tets);
 /// surface and the figures) or a mesh below `refuse_below_dihedral_deg`; Cancelled when `cancel`
 /// is set: CGAL's refinement polls it (through Mesh_3's stop flag) and stops within
 /// milliseconds; perturbation and exudation do not and end within their time limits.
-/// Reports progress a few times per second during refinement. Cost: of the order of a second for 24K tets
-/// (performance.md §2). Runs on the calling thread only.
+/// Reports progress a few times per second during refinement. Cost: tenths of a second to a few
+/// seconds from 7K to 54K tets (docs/BENCHMARKS.md, bench_mesh and bench_prepare_body). Runs on
+/// the calling thread only.
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report = nullptr, ProgressSink* progress = nullptr,
                        const CancelToken* cancel = nullptr);
