@@ -1,5 +1,7 @@
 #include "fissure/base/parallel.hpp"
 
+#include "fissure/base/thread_count.hpp"
+
 #include <algorithm>
 #include <exception>
 #include <thread>
@@ -9,7 +11,7 @@ namespace fissure {
 
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
   const std::size_t workers =
-      std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1)));
+      std::min<std::size_t>(count, static_cast<std::size_t>(std::max(std::min(threads, thread_count()), 1)));
   if (workers <= 1) {
     for (std::size_t i = 0; i < count; ++i) body(i);
     return;

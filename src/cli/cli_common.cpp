@@ -3,6 +3,7 @@
 #include "option_checks.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/thread_count.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -73,6 +74,13 @@ void add_max_megapixels_option(CLI::App& cmd, double& max_megapixels) {
   cmd.add_option("--max-megapixels", max_megapixels, "Refuse larger images before decoding them")
       ->default_val(64)
       ->check(finite_in(1e-3, 1e4));
+}
+
+void add_threads_option(CLI::App& cmd) {
+  cmd.add_option_function<int>("--threads", [](int n) { set_thread_count(n); },
+                               "Threads for all work (default $FISSURE_THREADS, else every hardware thread); "
+                               "results are identical at any count")
+      ->check(CLI::Range(1, 1024));
 }
 
 std::int64_t max_pixels(double max_megapixels) { return std::llround(max_megapixels * 1e6); }

@@ -44,6 +44,11 @@ void add_max_megapixels_option(CLI::App& cmd, double& max_megapixels);
 /// The pixel limit of CrackImageOptions for a --max-megapixels value.
 std::int64_t max_pixels(double max_megapixels);
 
+/// --threads N (1–1024) on every command and on `fissure` itself: sets fissure::set_thread_count
+/// while parsing, so assembly, CHOLMOD, OpenBLAS and every later parallel loop use N threads.
+/// Default: $FISSURE_THREADS, else the hardware threads. Results are identical at any count.
+void add_threads_option(CLI::App& cmd);
+
 /// Where a command's summary goes: stdout, unless a result is written to stdout ("-").
 std::FILE* summary_stream(const std::string& output);
 

@@ -1,3 +1,4 @@
+#include "cli_common.hpp"
 #include "commands.hpp"
 
 #include <iostream>
@@ -6,6 +7,7 @@ namespace fissure::cli {
 
 void register_version(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("version", "Print the Fissure version");
+  add_threads_option(*cmd);
   cmd->callback([&action] {
     action = [] {
       std::cout << "fissure " << FISSURE_VERSION << '\n';

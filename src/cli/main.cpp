@@ -1,5 +1,6 @@
 // `fissure`: the command-line front end. A thin layer over the core: parse, call, report.
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
 
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   CLI::App app{"Fissure: example-based fracture modelling"};
   app.require_subcommand(1);
   app.set_version_flag("--version", FISSURE_VERSION);
+  add_threads_option(app);
 
   Action action;
   register_mesh(app, action);
