@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs every benchmark binary on one core and regenerates docs/BENCHMARKS.md from their JSON.
 # Usage: scripts/bench.sh [benchmark-name-filter-regex]   e.g. scripts/bench.sh bench_fem
-# Medians of 5 repetitions; OMP/OpenBLAS pinned to one thread so figures are single-core.
+# Medians of 5 repetitions on one thread: FISSURE_THREADS=1 holds Fissure, CHOLMOD's OpenMP team
+# and OpenBLAS to one thread; OMP_THREAD_LIMIT=1 as well, because CHOLMOD asks OpenMP for a team
+# of 4 that OMP_NUM_THREADS does not cap (issue 9).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${FISSURE_BUILD_DIR:-$root/build}
@@ -9,7 +11,7 @@ build_dir=${FISSURE_BUILD_DIR:-$root/build}
 filter=${1:-.}
 out_dir=$build_dir/bench-results
 mkdir -p "$out_dir"
-export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
+export FISSURE_THREADS=1 OMP_THREAD_LIMIT=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1
 # The commit the figures belong to, recorded before the run.
 commit=$(git -C "$root" rev-parse --short HEAD)
 git -C "$root" diff --quiet HEAD || commit="$commit (with uncommitted changes)"

@@ -1,5 +1,7 @@
 #include "fissure/base/parallel.hpp"
 
+#include "fissure/base/thread_count.hpp"
+
 #include <algorithm>
 #include <exception>
 #include <thread>
@@ -9,28 +11,30 @@ namespace fissure {
 
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
   const std::size_t workers =
-      std::min<std::size_t>(count, static_cast<std::size_t>(std::max(threads, 1)));
+      std::min<std::size_t>(count, static_cast<std::size_t>(std::max(std::min(threads, thread_count()), 1)));
   if (workers <= 1) {
     for (std::size_t i = 0; i < count; ++i) body(i);
     return;
   }
   std::vector<std::exception_ptr> errors(workers);
-  std::vector<std::thread> pool;
-  pool.reserve(workers);
-  for (std::size_t w = 0; w < workers; ++w) {
-    pool.emplace_back([&, w] {
-      const std::size_t begin = count * w / workers;
-      const std::size_t end = count * (w + 1) / workers;
-      for (std::size_t i = begin; i < end; ++i) {
-        try {
-          body(i);
-        } catch (...) {
-          errors[w] = std::current_exception();
-          return;
-        }
+  const auto run_block = [&](std::size_t w) {
+    const std::size_t begin = count * w / workers;
+    const std::size_t end = count * (w + 1) / workers;
+    for (std::size_t i = begin; i < end; ++i) {
+      try {
+        body(i);
+      } catch (...) {
+        errors[w] = std::current_exception();
+        return;
       }
-    });
-  }
+    }
+  };
+  // The calling thread takes the first block, so N threads means N threads in the process, not
+  // N workers beside an idle caller.
+  std::vector<std::thread> pool;
+  pool.reserve(workers - 1);
+  for (std::size_t w = 1; w < workers; ++w) pool.emplace_back(run_block, w);
+  run_block(0);
   for (auto& t : pool) t.join();
   // Blocks are in index order, so the first worker with an error holds the lowest failing index.
   for (std::size_t w = 0; w < workers; ++w) {

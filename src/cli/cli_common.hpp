@@ -3,11 +3,18 @@
 // core module: every command's executable links this (fem_options.hpp and image_options.hpp hold
 // what only some commands need).
 
+#include <CLI/CLI.hpp>
+
 #include <chrono>
 #include <cstdio>
 #include <string>
 
 namespace fissure::cli {
+
+/// --threads N (1–1024) on every command: sets fissure::set_thread_count while parsing, so
+/// assembly, CHOLMOD, OpenBLAS and every later parallel loop use at most N threads. Default:
+/// $FISSURE_THREADS, else the hardware threads. Results are identical at any count.
+void add_threads_option(CLI::App& cmd);
 
 /// Where a command's summary goes: stdout, unless a result is written to stdout ("-").
 std::FILE* summary_stream(const std::string& output);

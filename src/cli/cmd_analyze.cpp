@@ -92,6 +92,7 @@ int run_analyze(const AnalyzeArgs& args) {
 void register_analyze(CLI::App& app, Action& action) {
   auto args = std::make_shared<AnalyzeArgs>();
   auto* cmd = app.add_subcommand("analyze", std::string(command_info("analyze").summary));
+  add_threads_option(*cmd);
   cmd->add_option("IMAGE", args->image, "Traced cracks: PNG, JPEG, TIFF or BMP, lines of either polarity")->required();
   cmd->add_option("--json", args->json, "Write the statistics as JSON (input of fissure compare); - for stdout");
   cmd->add_option("--overlay", args->overlay, "Write a PNG showing fragments, skeleton, junctions (T red, Y blue, X magenta) "

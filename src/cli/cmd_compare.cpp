@@ -65,6 +65,7 @@ int run_compare(const CompareArgs& args) {
 void register_compare(CLI::App& app, Action& action) {
   auto args = std::make_shared<CompareArgs>();
   auto* cmd = app.add_subcommand("compare", std::string(command_info("compare").summary));
+  add_threads_option(*cmd);
   cmd->add_option("A", args->a, "Traced image or statistics JSON (from fissure analyze --json)")->required();
   cmd->add_option("B", args->b, "Traced image or statistics JSON")->required();
   cmd->add_option("--weights", args->weights, "Weights of the fragment, crack and junction terms")->default_val("3,1,1");

@@ -70,6 +70,7 @@ int run_mesh(const MeshArgs& args) {
 void register_mesh(CLI::App& app, Action& action) {
   auto args = std::make_shared<MeshArgs>();
   auto* cmd = app.add_subcommand("mesh", std::string(command_info("mesh").summary));
+  add_threads_option(*cmd);
   cmd->add_option("INPUT", args->input,
                   "Surface file (OBJ, PLY, STL, glTF/GLB, FBX, OFF) or tile:W,H,T (metres; x, y centred, z from 0 to T)")
       ->required();

@@ -77,6 +77,7 @@ int run_modes(const ModesArgs& args) {
 void register_modes(CLI::App& app, Action& action) {
   auto args = std::make_shared<ModesArgs>();
   auto* cmd = app.add_subcommand("modes", std::string(command_info("modes").summary));
+  add_threads_option(*cmd);
   cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
   add_material_options(*cmd, args->material, true);
   cmd->add_option("--count", args->count, "Number of flexible modes")->required()->check(CLI::Range(1, 5000));

@@ -10,6 +10,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/thread_count.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/fem/load.hpp"
 #include "fissure/base/memory.hpp"
@@ -37,7 +38,6 @@ struct SolveArgs {
   std::string mass = "lumped";
   std::string cache_dir;
   bool no_cache = false;
-  int threads = 1;
   bool binary = false;
   bool quiet = false;
   bool allow_large = false;
@@ -80,7 +80,7 @@ int run_solve(const SolveArgs& args) {
     const MassKind mass = mass_kind(args.mass);
 
     progress.stage("assembling");
-    body = std::make_shared<const ElasticBody>(mesh, args.material, args.threads);
+    body = std::make_shared<const ElasticBody>(mesh, args.material, thread_count());
     throw_if_interrupted();
     if (args.modes > 0) {
       ModalOptions options;
@@ -138,6 +138,7 @@ int run_solve(const SolveArgs& args) {
 void register_solve(CLI::App& app, Action& action) {
   auto args = std::make_shared<SolveArgs>();
   auto* cmd = app.add_subcommand("solve", std::string(command_info("solve").summary));
+  add_threads_option(*cmd);
   cmd->add_option("MESH", args->mesh, "Tet mesh, gmsh .msh (2.2 or 4.1)")->required();
   add_material_options(*cmd, args->material, false);
   cmd->add_option("--fix", args->fix,
@@ -155,9 +156,6 @@ void register_solve(CLI::App& app, Action& action) {
       ->default_val("lumped");
   cmd->add_option("--cache-dir", args->cache_dir, "Where modal bases are cached (default $FISSURE_CACHE_DIR or ~/.cache/fissure)");
   cmd->add_flag("--no-cache", args->no_cache, "Compute the modal basis without reading or writing the cache");
-  cmd->add_option("--threads", args->threads, "Threads for assembly (results are identical at any count)")
-      ->default_val(1)
-      ->check(CLI::Range(1, 256));
   cmd->add_option("-o,--output", args->output, "Result file, gmsh MSH 4.1 with views: a .msh file, or - for stdout")
       ->required();
   cmd->add_flag("--binary", args->binary, "Write binary MSH instead of ASCII");

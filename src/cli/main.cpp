@@ -8,12 +8,14 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <thread>
 #include <unistd.h>
 
 namespace {
@@ -63,6 +65,40 @@ int version_command(int argc, char** argv) {
   return usage_error("version takes no arguments, got '" + std::string(arg) + "' (see fissure version --help)");
 }
 
+// The thread count a command will run with: its --threads N, else $FISSURE_THREADS, else the
+// hardware threads (the rule of base/thread_count.hpp); 0 when a value does not parse (the
+// command then refuses it).
+unsigned requested_threads(int argc, char** argv) {
+  auto parse = [](std::string_view text) -> unsigned {
+    unsigned n = 0;
+    for (char c : text) {
+      if (c < '0' || c > '9' || n > 1024) return 0;
+      n = n * 10 + static_cast<unsigned>(c - '0');
+    }
+    return n >= 1 && n <= 1024 ? n : 0;
+  };
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") break;
+    if (arg == "--threads" && i + 1 < argc) return parse(argv[i + 1]);
+    if (arg.starts_with("--threads=")) return parse(arg.substr(10));
+  }
+  if (const char* env = std::getenv("FISSURE_THREADS")) {
+    if (const unsigned n = parse(env)) return n;
+  }
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// Holds the libraries that size their thread pools when they load, before the command can call
+// anything: CHOLMOD 3 asks libgomp for a fixed team of 4 that only OMP_THREAD_LIMIT caps, and the
+// pthread OpenBLAS starts a pool at load that Fissure never uses (it runs BLAS on one thread at
+// every count so that results do not depend on it: fem/sparse_cholesky.cpp). A limit the user set
+// is kept.
+void limit_library_threads(unsigned threads) {
+  setenv("OPENBLAS_NUM_THREADS", "1", 0);
+  if (threads > 0) setenv("OMP_THREAD_LIMIT", std::to_string(threads).c_str(), 0);
+}
+
 // libexec/fissure/ beside the bin/ directory this executable is in, found through /proc so that
 // a symlink to bin/fissure or a relative PATH entry still finds the real install.
 std::filesystem::path libexec_directory() {
@@ -92,6 +128,7 @@ int main(int argc, char** argv) {
   if (!known) return usage_error("unknown command '" + std::string(first) + "' (commands: " + command_list() + ")");
 
   const std::filesystem::path executable = libexec_directory() / ("fissure-" + std::string(first));
+  limit_library_threads(requested_threads(argc, argv));
   execv(executable.c_str(), argv);
   // Only reached when the installation is broken (a missing or non-executable file).
   std::cerr << "fissure: cannot run the " << first << " command: " << executable.string() << ": " << std::strerror(errno)

@@ -9,6 +9,7 @@
 // and the polyline clean-up (smooth, simplify) applied to each final crack.
 
 #include "fissure/exemplar/crack_graph.hpp"
+#include "fissure/base/huge_pages.hpp"
 
 #include <opencv2/core.hpp>
 
@@ -27,6 +28,8 @@ inline constexpr int kDy[8] = {-1, -1, 0, 1, 1, 1, 0, -1};
 struct CrackRegions {
   std::vector<std::uint8_t> crack;  ///< 1 = crack inside the ROI, specks filled
   cv::Mat labels, stats, centroids; ///< connectedComponentsWithStats of the background (specks relabelled 0)
+  /// The pixels of `labels` (4 bytes a pixel, 67 MB at 4096²), on huge pages (huge_pages.hpp).
+  std::vector<std::int32_t, HugePageAllocator<std::int32_t>> label_storage;
   int region_count = 0;
   std::vector<std::uint8_t> small;  ///< per label: a speck below the minimum fragment area
 };

@@ -26,6 +26,8 @@ CrackRegions label_regions(const CrackMask& mask, double min_fragment_area, Crac
         row[x] = mask.inside(static_cast<std::int64_t>(i)) && !r.crack[i] ? 255 : 0;
       }
     }
+    r.label_storage.resize(n);
+    r.labels = cv::Mat(h, w, CV_32S, r.label_storage.data());
     r.region_count = cv::connectedComponentsWithStats(background, r.labels, r.stats, r.centroids, 4, CV_32S);
   }
   r.small.assign(static_cast<std::size_t>(r.region_count), 0);

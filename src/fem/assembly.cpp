@@ -1,6 +1,7 @@
 #include "fissure/fem/assembly.hpp"
 
 #include "fissure/base/parallel.hpp"
+#include "fissure/base/thread_count.hpp"
 
 #include <algorithm>
 
@@ -76,44 +77,52 @@ SparseMatrixD assemble_stiffness(const TetMesh& mesh, const TetGradients& gradie
   const double mu = material.shear_modulus();
 
   // Element blocks: K_ab = V (λ g_a g_bᵀ + μ g_b g_aᵀ + μ (g_a·g_b) I), stored per tet as 16
-  // blocks of 9 (block (a, b) column-major). Computed in parallel into per-tet slots.
-  std::vector<double> blocks(static_cast<std::size_t>(n_tets) * 144);
-  const std::size_t chunk = 256;
-  const std::size_t chunks = (static_cast<std::size_t>(n_tets) + chunk - 1) / chunk;
-  parallel_for(chunks, threads, [&](std::size_t c) {
-    const int begin = static_cast<int>(c * chunk);
-    const int end = std::min(n_tets, begin + static_cast<int>(chunk));
-    for (int t = begin; t < end; ++t) {
-      Eigen::Vector3d g[4];
-      for (int a = 0; a < 4; ++a) g[a] = gradients.gradient(t, a);
-      const double v = gradients.volumes[t];
-      double* out = blocks.data() + static_cast<std::size_t>(t) * 144;
-      for (int b = 0; b < 4; ++b) {
-        for (int a = 0; a < 4; ++a) {
-          const double dot = mu * g[a].dot(g[b]);
-          double* blk = out + 9 * (4 * b + a);
-          for (int j = 0; j < 3; ++j)
-            for (int i = 0; i < 3; ++i)
-              blk[3 * j + i] = v * (lambda * g[a][i] * g[b][j] + mu * g[b][i] * g[a][j] +
-                                    (i == j ? dot : 0.0));
-        }
-      }
-    }
-  });
-
-  // Scatter in tet order: the summation order is fixed, hence the bits.
+  // blocks of 9 (block (a, b) column-major), computed (in parallel) for a batch of tets and then
+  // scattered into K in tet order: the summation order is fixed, hence the bits at any thread
+  // count. A buffer for every tet (144 doubles each, 65 MB at 54K) came from mmap and was
+  // re-faulted page by page on every call, at ~10 µs a page several times the arithmetic
+  // (issue 9). On one thread a batch of 64 tets (74 KB) stays below malloc's mmap threshold and in
+  // L2; on more, batches of 1,024 tets per thread keep thread start-up small against the work.
+  const int workers = std::max(1, std::min(threads, thread_count()));
+  constexpr int kChunk = 256;  // tets per parallel work item
+  const int batch_size = workers == 1 ? 64 : 4 * kChunk * workers;
+  std::vector<double> blocks(static_cast<std::size_t>(std::min(n_tets, batch_size)) * 144);
   SparseMatrixD k = pattern.empty_matrix();
   double* values = k.valuePtr();
-  for (int t = 0; t < n_tets; ++t) {
-    const double* blk = blocks.data() + static_cast<std::size_t>(t) * 144;
-    for (int b = 0; b < 4; ++b)
-      for (int a = 0; a < 4; ++a, blk += 9)
-        for (int j = 0; j < 3; ++j) {
-          double* col = values + pattern.block_slot(t, a, b, j);
-          col[0] += blk[3 * j];
-          col[1] += blk[3 * j + 1];
-          col[2] += blk[3 * j + 2];
+  for (int batch = 0; batch < n_tets; batch += batch_size) {
+    const int batch_end = std::min(n_tets, batch + batch_size);
+    const std::size_t chunks = static_cast<std::size_t>(batch_end - batch + kChunk - 1) / kChunk;
+    parallel_for(chunks, threads, [&](std::size_t c) {
+      const int begin = batch + static_cast<int>(c) * kChunk;
+      const int end = std::min(batch_end, begin + kChunk);
+      for (int t = begin; t < end; ++t) {
+        Eigen::Vector3d g[4];
+        for (int a = 0; a < 4; ++a) g[a] = gradients.gradient(t, a);
+        const double v = gradients.volumes[t];
+        double* out = blocks.data() + static_cast<std::size_t>(t - batch) * 144;
+        for (int b = 0; b < 4; ++b) {
+          for (int a = 0; a < 4; ++a) {
+            const double dot = mu * g[a].dot(g[b]);
+            double* blk = out + 9 * (4 * b + a);
+            for (int j = 0; j < 3; ++j)
+              for (int i = 0; i < 3; ++i)
+                blk[3 * j + i] = v * (lambda * g[a][i] * g[b][j] + mu * g[b][i] * g[a][j] +
+                                      (i == j ? dot : 0.0));
+          }
         }
+      }
+    });
+    for (int t = batch; t < batch_end; ++t) {
+      const double* blk = blocks.data() + static_cast<std::size_t>(t - batch) * 144;
+      for (int b = 0; b < 4; ++b)
+        for (int a = 0; a < 4; ++a, blk += 9)
+          for (int j = 0; j < 3; ++j) {
+            double* col = values + pattern.block_slot(t, a, b, j);
+            col[0] += blk[3 * j];
+            col[1] += blk[3 * j + 1];
+            col[2] += blk[3 * j + 2];
+          }
+    }
   }
   return k;
 }

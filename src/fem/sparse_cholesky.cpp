@@ -1,23 +1,45 @@
 #include "fissure/fem/sparse_cholesky.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/thread_count.hpp"
 
 #include <cholmod.h>
 
+#include <atomic>
 #include <mutex>
 #include <string>
 
-// OpenBLAS's thread control, declared weak: when libblas is another implementation the symbol is
-// absent and the call is skipped.
+// The thread controls of the libraries CHOLMOD calls, declared weak so fem links neither: each
+// call is skipped when its library is absent (another BLAS, a CHOLMOD built without OpenMP).
+// blas_thread_shutdown_ ends the worker pool OpenBLAS starts when it is loaded, before main.
 extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+extern "C" int blas_thread_shutdown_(void) __attribute__((weak));
+extern "C" void omp_set_max_active_levels(int) __attribute__((weak));
 
 namespace fissure {
 
-void use_single_threaded_blas() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    if (openblas_set_num_threads) openblas_set_num_threads(1);
-  });
+void apply_thread_count() {
+  const int n = thread_count();
+  // OpenBLAS: always one thread, because its threaded dsyrk/dpotrf block differently and change
+  // the factor's bits (ThreadCount test). At one thread its pool, started when the library
+  // loaded, is also ended, so it adds no thread; the pool is process-wide, so this runs once per
+  // change of the count.
+  static std::mutex blas_mutex;
+  static std::atomic<int> blas_applied{0};
+  if (blas_applied.load(std::memory_order_acquire) != n) {
+    std::lock_guard<std::mutex> lock(blas_mutex);
+    if (blas_applied.load(std::memory_order_relaxed) != n) {
+      if (openblas_set_num_threads) openblas_set_num_threads(1);
+      if (n == 1 && blas_thread_shutdown_) blas_thread_shutdown_();
+      blas_applied.store(n, std::memory_order_release);
+    }
+  }
+  // OpenMP: CHOLMOD 3 (SuiteSparse 5) asks for a team of exactly 4 in its supernodal loops
+  // (num_threads(4), so omp_set_num_threads and OMP_NUM_THREADS are ignored); only
+  // OMP_THREAD_LIMIT, read when libgomp loads, caps that team. Zero active levels makes every
+  // parallel region run on its calling thread alone. The setting belongs to the calling thread,
+  // hence on every call. Counts of 2 and more leave CHOLMOD its team of 4.
+  if (omp_set_max_active_levels) omp_set_max_active_levels(n == 1 ? 0 : 1);
 }
 
 struct SparseCholesky::Impl {
@@ -86,6 +108,7 @@ struct SparseCholesky::Impl {
   // (tested under ThreadSanitizer, docs/architecture.md). cholmod_start only sets defaults, so a
   // common per call costs nothing against the triangular solves.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const {
+    apply_thread_count();
     cholmod_common local{};
     cholmod_start(&local);
     local.print = 0;
@@ -119,7 +142,7 @@ SparseCholesky& SparseCholesky::operator=(SparseCholesky&&) noexcept = default;
 
 void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& a) {
   if (a.rows() != a.cols()) throw InvalidInput("Cholesky factorisation: the matrix is not square");
-  use_single_threaded_blas();
+  apply_thread_count();
   Impl& impl = *m_impl;
   if (impl.factor) cholmod_free_factor(&impl.factor, &impl.common);
   impl.n = static_cast<int>(a.rows());
@@ -131,6 +154,7 @@ void SparseCholesky::factorize(const Eigen::SparseMatrix<double>& a) {
 }
 
 void SparseCholesky::refactorize(const Eigen::SparseMatrix<double>& a) {
+  apply_thread_count();
   if (!m_impl->factor || a.rows() != m_impl->n) {
     factorize(a);
     return;

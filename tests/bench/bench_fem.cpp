@@ -13,6 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <map>
 
 namespace {
@@ -57,6 +58,11 @@ void BM_Factorize(benchmark::State& state) {
   for (auto _ : state) chol.factorize(k);
   set_size_counters(state, *mesh);
   state.counters["nnz_L"] = static_cast<double>(chol.factor_nonzeros());
+  // The threads the process has after factorising (OpenMP and OpenBLAS keep their workers):
+  // 1 when the run is single-threaded, as bench.sh's FISSURE_THREADS=1 says (issue 9).
+  int tasks = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator("/proc/self/task")) ++tasks;
+  state.counters["threads"] = tasks;
 }
 
 void BM_DirectSolve(benchmark::State& state) {

@@ -25,7 +25,7 @@ SECTION_NOTES = {
     "bench_msh": "gmsh MSH 4.1 write and read through the gmsh API.",
     "bench_fem": "FEM kernels on the CGAL tile (corner supports, 10 kN on a 5 cm centre patch). Targets at 24K "
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "
-                 "gradients and pattern), factor ≤ 100 ms, direct solve ≤ 3 ms (includes the residual check), "
+                 "gradients and pattern), factor ≤ 100 ms (`threads`: the process's threads afterwards, 1 on one thread), direct solve ≤ 3 ms (includes the residual check), "
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
                  "stress + max principal ≤ 0.5 ms. `StressRecoveryBuild` / `Apply`: the patch-recovery operator, "
                  "built once per mesh and applied once per stress field (no target). `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "

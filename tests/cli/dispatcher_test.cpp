@@ -5,10 +5,15 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace fissure {
 namespace {
@@ -99,6 +104,49 @@ TEST(Dispatcher, UsageErrorsAreOneLine) {
     EXPECT_NE(r.output.find("  " + std::string(command) + " "), std::string::npos) << command;
     EXPECT_EQ(test::run_command(fissure() + " " + command + " --help").exit_code, 0) << command;
   }
+}
+
+// Threads of process `pid` now (0 once it is gone).
+std::size_t task_count(pid_t pid) {
+  std::error_code error;
+  std::size_t n = 0;
+  for (fs::directory_iterator it("/proc/" + std::to_string(pid) + "/task", error), end; !error && it != end; it.increment(error)) ++n;
+  return n;
+}
+
+// --threads 2 holds the libraries too: CHOLMOD 3 asks libgomp for a fixed team of 4 and the
+// pthread OpenBLAS starts a pool when it loads, both before the command runs; the dispatcher caps
+// them through the environment. Without that, this solve peaked at 4 threads.
+TEST(Dispatcher, TheThreadOptionHoldsTheLibrariesToo) {
+  const fs::path dir = test::fresh_temp_dir("dispatcher-threads");
+  const std::string mesh = (dir / "tile.msh").string();
+  ASSERT_EQ(test::run_command(fissure() + " mesh tile:1,1,0.05 --tets 24000 -q -o " + mesh).exit_code, 0);
+  std::vector<std::string> args{fissure(), "solve", mesh, "--E", "3e10", "--nu", "0.2", "--load",
+                                "ball:0,0,0.05,0.05=0,0,-1e4", "--threads", "2", "-q", "-o", (dir / "out.msh").string()};
+  for (const char* corner : {"box:-0.5,-0.45,-0.5,-0.45,0,0", "box:0.45,0.5,-0.5,-0.45,0,0", "box:-0.5,-0.45,0.45,0.5,0,0",
+                             "box:0.45,0.5,0.45,0.5,0,0"}) {
+    args.push_back("--fix");
+    args.push_back(corner);
+  }
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  // Without the variables a user may have set, which would hide what the dispatcher does.
+  std::vector<std::string> env_strings{"PATH=/usr/bin:/bin", "HOME=" + dir.string()};
+  std::vector<char*> env;
+  for (std::string& e : env_strings) env.push_back(e.data());
+  env.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), env.data()), 0);
+  std::size_t peak = 0;
+  int status = 0;
+  while (waitpid(pid, &status, WNOHANG) == 0) {
+    peak = std::max(peak, task_count(pid));
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_GE(peak, 1u);
+  EXPECT_LE(peak, 2u) << "threads of `fissure solve --threads 2` at their peak";
 }
 
 }  // namespace

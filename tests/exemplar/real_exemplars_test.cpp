@@ -1,8 +1,10 @@
 // The 15 real traced masks in ../shared/exemplars (third-party data, read in place, never copied)
 // against the statistics of an independent implementation in ref-stats/.
 
+#include "fissure/base/content_hash.hpp"
 #include "fissure/exemplar/exemplar_analysis.hpp"
 #include "fissure/exemplar/similarity.hpp"
+#include "fissure/exemplar/stats_json.hpp"
 
 #include "test_support.hpp"
 
@@ -166,6 +168,21 @@ TEST(RealExemplarDistances, EachIsClosestToItsOwnReference) {
   }
   // The band above rests on this: the references of two different exemplars are ≥ 0.05 apart.
   EXPECT_GT(closest_pair, 0.05);
+}
+
+// Issue 9 moved the skeleton's and the region labels' working arrays to huge pages; the
+// statistics of all 15 exemplars must keep their bytes. The digest of their JSON was computed by
+// this test on the commit before that change (0a9ff0e's exemplar code); any change to the
+// analysis that moves a statistic changes it, and then it is re-derived on purpose.
+TEST(RealExemplars, StatisticsKeepTheirBytes) {
+  if (!shared_exemplars_present()) {
+    GTEST_SKIP() << "shared exemplars not found at " << exemplar_dir() << " (set FISSURE_SHARED_DIR)";
+  }
+  ContentHasher hasher;
+  for (const Case& c : kCases) {
+    hasher.add(pattern_stats_to_json(analyze_exemplar(exemplar_dir() / (std::string(c.name) + ".png")).stats));
+  }
+  EXPECT_EQ(hasher.finish().hex(), "bc10ab97b87c0d5f98983f3651afafb5");
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 
 namespace fissure {
 
-/// Calls body(i) for i in [0, count) on `threads` threads (≤ 1: the calling thread only), in
-/// contiguous static blocks. If bodies throw, the exception of the lowest failing index is
+/// Calls body(i) for i in [0, count) on min(`threads`, thread_count()) threads (≤ 1: the calling
+/// thread only; thread_count.hpp), in contiguous static blocks. If bodies throw, the exception of the lowest failing index is
 /// rethrown after every thread has finished.
 void parallel_for(std::size_t count, int threads, const std::function<void(std::size_t)>& body);
 

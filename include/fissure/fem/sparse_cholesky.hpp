@@ -45,9 +45,12 @@ private:
   std::unique_ptr<Impl> m_impl;
 };
 
-/// Makes the BLAS that CHOLMOD calls single-threaded (OpenBLAS), so factorisations are
-/// bit-reproducible and the second core is free for a second job. Called by SparseCholesky; safe
-/// to call repeatedly and a no-op when the BLAS is not OpenBLAS.
-void use_single_threaded_blas();
+/// Holds the libraries CHOLMOD calls to fissure::thread_count() (base/thread_count.hpp): at one
+/// thread, OpenBLAS's worker pool is ended and CHOLMOD's OpenMP regions run on the calling thread,
+/// so the process adds no thread. At two or more CHOLMOD keeps its fixed OpenMP team of 4
+/// (OMP_THREAD_LIMIT, set before start, caps it) and OpenBLAS stays at one thread, since its
+/// threaded kernels change the factor's bits. Results are identical at any count. Called by every
+/// factorisation and solve; cheap and safe to call from any thread.
+void apply_thread_count();
 
 }  // namespace fissure
