@@ -384,12 +384,14 @@ ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const st
   // Block of 8 right-hand sides, basis of 3·nev, restarts keeping nev + (ncv − nev)/4: the
   // fastest of the block sizes 8–32, bases 2–5·nev and keep fractions 0.15–0.4 tried at 24K
   // tets, m = 50 (larger blocks solve cheaper per column but need more columns and more
-  // Gram–Schmidt). Smaller blocks for tiny meshes, whose free dimension must hold the basis
-  // plus a pending block.
+  // Gram–Schmidt). Beyond nev = 80 the basis grows by 160 only: Gram–Schmidt costs n·ncv² and
+  // Rayleigh–Ritz ncv³ per restart, and 3·nev made m = 400 slower than single-vector Lanczos
+  // (nev + 160 halved it). Smaller blocks for tiny meshes, whose free dimension must hold the
+  // basis plus a pending block.
   const Eigen::Index flexible = n - rigid.cols();
   Eigen::Index block = std::clamp<Eigen::Index>((flexible - nev) / 3, 1, 8);
   Eigen::Index ncv = std::min<Eigen::Index>(
-      flexible - block, std::max<Eigen::Index>(options.krylov_size > 0 ? options.krylov_size : 3 * nev, nev + 3 * block));
+      flexible - block, std::max<Eigen::Index>(options.krylov_size > 0 ? options.krylov_size : nev + std::min<Eigen::Index>(2 * nev, 160), nev + 3 * block));
   if (ncv < nev + block) {
     // Nearly every flexible mode wanted (tiny meshes): one vector at a time over the whole
     // complement, where the first Rayleigh–Ritz is exact.

@@ -363,7 +363,7 @@ TEST(ModalBasis, RequestsBeyondTheMemoryLimitAreRefusedUpFront) {
   options.mode_count = 100;
   options.memory_limit_bytes = 1'000'000;
   const std::vector<int> supports = fixed(*mesh, "xmin");
-  // Basis 244 (3·100 capped at 252 − one block of 8): 8·(2·252·100 + 3·252·244 + 3·244²)
+  // Basis 244 (100 + 160 capped at 252 − one block of 8): 8·(2·252·100 + 3·252·244 + 3·244²)
   // + 48·nnz(K_ff) ≈ 3.3 MB plus the factor.
   try {
     ModalBasis::compute(body, supports, options);

@@ -31,7 +31,8 @@ struct ModalOptions {
   /// ‖T φ − μ φ‖_M ≤ tolerance · μ (the criterion Spectra's Lanczos used).
   double tolerance = 1e-10;
   int max_iterations = 1000;          ///< restarts of the block iteration
-  /// Krylov basis size; 0 picks 3·nev (at least nev + 3 blocks), capped by the free dimension.
+  /// Krylov basis size; 0 picks nev + min(2·nev, 160) (at least nev + 3 blocks), capped by the
+  /// free dimension.
   int krylov_size = 0;
   /// Refuse (InvalidInput, before any factorisation) when modal_memory_estimate() exceeds this;
   /// 0 = the machine's physical memory, UINT64_MAX = no limit. Not part of the cache key.
