@@ -50,7 +50,7 @@ SECTION_NOTES = {
                               "there; `smooth_pattern`: the raw values averaged over 3 cm of the bottom half. "
                               "Recovery turns a 62 % element-scale pattern error into 7 % at 24K "
                               "(docs/architecture.md).",
-    "bench_modal": "Modal analysis (Spectra shift-invert) and the modal static solve.",
+    "bench_modal": "Modal analysis (block shift-invert Krylov–Schur over multi-RHS CHOLMOD solves) and the modal static solve.",
     "bench_modal_accuracy": "Time against error of the modal static solve against the direct solve on the 24K "
                             "tile, 10 kN on a 5 cm centre patch. `supported=1`: corner supports; `0`: free body "
                             "(inertia relief). Time = modal solve + stress kernel; `eigensolve_s` = the one-off "

@@ -1,7 +1,8 @@
 #pragma once
 /// The modal basis of paper §5.1: the lowest eigenpairs of K φ = λ M φ, mass-normalised, computed
 /// once per body and reused for every load (Eq. 1 "solved directly" in modal coordinates).
-/// Spectra's shift-invert Lanczos runs over a CHOLMOD factorisation of K − σM.
+/// A block shift-invert Krylov–Schur iteration runs over a CHOLMOD factorisation of K − σM, with
+/// blocks of right-hand sides solved together.
 
 #include "fissure/base/content_hash.hpp"
 #include "fissure/base/progress.hpp"
@@ -26,9 +27,12 @@ enum class ModalPrecision { Double, Single };
 struct ModalOptions {
   int mode_count = 50;                ///< flexible modes wanted (rigid modes come on top)
   MassKind mass = MassKind::Lumped;
-  double tolerance = 1e-10;           ///< Spectra's relative tolerance on the Ritz values
-  int max_iterations = 1000;          ///< Lanczos restarts
-  /// Lanczos basis size; 0 picks max(2·nev + 1, 20) (Spectra's advice ncv ≥ 2·nev), capped at n.
+  /// Relative residual of each Ritz pair of the shift-inverted operator T = (K − σM)⁻¹M:
+  /// ‖T φ − μ φ‖_M ≤ tolerance · μ (the criterion Spectra's Lanczos used).
+  double tolerance = 1e-10;
+  int max_iterations = 1000;          ///< restarts of the block iteration
+  /// Krylov basis size; 0 picks nev + min(2·nev, 160) (at least nev + 3 blocks), capped by the
+  /// free dimension.
   int krylov_size = 0;
   /// Refuse (InvalidInput, before any factorisation) when modal_memory_estimate() exceeds this;
   /// 0 = the machine's physical memory, UINT64_MAX = no limit. Not part of the cache key.
@@ -47,19 +51,20 @@ public:
 
   /// Lowest `options.mode_count` flexible modes of `body` with the dofs `fixed_dofs` held at zero.
   /// Supported body: shift 0 (K_ff is positive definite). Free body (no fixed dofs): the 6 rigid
-  /// motions per component are the exact ones, M-orthonormalised, and deflated from the Lanczos
+  /// motions per component are the exact ones, M-orthonormalised, and deflated from the block
   /// iteration, which runs with a shift −0.01·λ_R (λ_R a Rayleigh–Ritz upper bound of the first
   /// flexible eigenvalue from quadratic trial fields; fem-pitfalls.md §2.7 shows −1e-3…−1e-1·λ₇
   /// is safe). That the
   /// rigid motions carry no energy (rᵀKr ≤ 1e-6·λ₇) is checked, so a further zero mode is
   /// reported rather than hidden. Throws InvalidInput for bad options, a fixed dof outside the
   /// mesh, a mechanism, or a request whose memory estimate exceeds options.memory_limit_bytes
-  /// (checked before any factorisation); NumericalFailure when Spectra does not converge or the
-  /// spectrum is not what a free body must have; Cancelled when `cancel` fires — checked at every
-  /// Lanczos operator application (one pair of triangular solves), so within milliseconds.
-  /// `progress` hears stage "modal analysis" at most every 0.2 s during Lanczos (the fraction is
-  /// an estimate: the number of restarts is not known in advance). Cost: ≈ 0.5 s for 50 modes at
-  /// 24K tets, ≈ 14 s for 400.
+  /// (checked before any factorisation); NumericalFailure when the iteration does not converge or
+  /// the spectrum is not what a free body must have; Cancelled when `cancel` fires — checked at
+  /// every block of triangular solves and every restart, so within milliseconds. `progress` hears
+  /// stage "modal analysis" at most every 0.2 s during the iteration (the fraction is an
+  /// estimate: the number of restarts is not known in advance). Cost: a factorisation plus
+  /// O(m) multi-right-hand-side solves and O(#dofs · m²) Gram–Schmidt; tenths of a second for
+  /// 50 modes at 24K tets, seconds for hundreds (figures in docs/BENCHMARKS.md).
   static ModalBasis compute(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
                             const ModalOptions& options, ProgressSink* progress = nullptr,
                             const CancelToken* cancel = nullptr);
@@ -118,7 +123,8 @@ private:
 std::filesystem::path default_cache_directory();
 
 /// Bytes a modal analysis needs at its peak, estimated from the free dofs, the modes, the Krylov
-/// size and nnz(K_ff): Φ (twice), the Krylov basis, Spectra's dense ncv² matrices and the factor.
+/// size and nnz(K_ff): Φ (twice), the Krylov basis with a restart copy, the dense ncv² matrices of
+/// Rayleigh–Ritz and the factor.
 double modal_memory_estimate(Eigen::Index dofs, Eigen::Index modes, Eigen::Index krylov_size,
                              Eigen::Index stiffness_nonzeros);
 
