@@ -29,10 +29,9 @@ SECTION_NOTES = {
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
                  "stress + max principal ≤ 0.5 ms. `StressRecoveryBuild` / `Apply`: the patch-recovery operator, "
                  "built once per mesh and applied once per stress field (no target). `ModalSolve50/N/p`: p = 0 double, p = 1 the float copy of Φ "
-                 "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound. One "
-                 "core of this machine reads ≈ 70–100 GB/s from its 2 MB L2 but ≈ 21–25 GB/s beyond it "
-                 "(`bench_machine`), so at 24K (6.7 MB in double, 3.3 MB in float) the floor is ≈ 0.27 / "
-                 "0.14 ms: the 0.1 ms target assumed the ≈ 100 GB/s L3 of the machine in performance.md. "
+                 "(ModalPrecision::Single). The modal solve streams Φ once (`phi_MB`): it is memory-bound, so read it against "
+                 "`bench_machine`'s bandwidth beyond L2 (6.7 MB in double, 3.3 MB in float at 24K; the "
+                 "machines of this project read 21–75 GB/s there, which puts the floor at 0.09–0.3 ms). "
                  "The float copy's error is in `bench_modal_accuracy`.",
     "bench_mesh_convergence": "Time against error of the mesh resolution: the bench_fem load case solved directly "
                               "on tiles of increasing tet count, against a 200K-tet reference (`reference_tets`). "
