@@ -223,7 +223,17 @@ private:
     m_mx.noalias() = m_m * x;
     for (Eigen::Index j = 0; j < b; ++j) entry_norm[j] = std::sqrt(std::max(0.0, x.col(j).dot(m_mx.col(j))));
     for (int pass = 0; pass < 2 && k > 0; ++pass) {
-      if (pass > 0) m_mx.noalias() = m_m * x;
+      if (pass > 0) {
+        m_mx.noalias() = m_m * x;
+        // DGKS (Daniel, Gragg, Kaufman, Stewart 1976): the second pass only corrects the
+        // round-off of the first where that first pass removed most of a column; a block whose
+        // columns all kept more than 1/√2 of their M-norm is orthogonal to V to working precision.
+        bool needed = false;
+        for (Eigen::Index j = 0; j < b; ++j) {
+          needed = needed || std::sqrt(std::max(0.0, x.col(j).dot(m_mx.col(j)))) < 0.7071 * entry_norm[j];
+        }
+        if (!needed) break;
+      }
       const Eigen::MatrixXd c = v.leftCols(k).transpose() * m_mx;
       if (h && pass == 0) h->block(0, k - b, k, b) = c;
       if (h && pass == 1) h->block(0, k - b, k, b) += c;
