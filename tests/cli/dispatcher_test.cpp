@@ -94,6 +94,10 @@ TEST(Dispatcher, UsageErrorsAreOneLine) {
   r = test::run_command(fissure() + " version now");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output, "fissure: version takes no arguments, got 'now' (see fissure version --help)\n");
+  // Used to read "Value abc not in range 1 to 1024".
+  r = test::run_command(fissure() + " mesh tile:1,1,0.05 --threads abc -o never.msh");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.output, "fissure: --threads: 'abc' is not a whole number (see fissure mesh --help)\n");
   r = test::run_command(fissure());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output, "fissure: a command is required (commands: mesh, solve, modes, analyze, compare, version)\n");
