@@ -1,7 +1,7 @@
 #pragma once
-// Pieces every command uses: where the summary goes, and a stopwatch. Nothing here may need a
-// core module: every command's executable links this (fem_options.hpp and image_options.hpp hold
-// what only some commands need).
+// Pieces every command uses: the --threads option, where the summary goes, and a stopwatch.
+// Nothing here may need a core module beyond base: every command's executable links this
+// (fem_options.hpp and image_options.hpp hold what only some commands need).
 
 #include <CLI/CLI.hpp>
 

@@ -2,6 +2,7 @@
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/base/huge_pages.hpp"
 #include "fissure/base/memory.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/rng.hpp"
@@ -21,7 +22,6 @@
 #include <new>
 #include <numbers>
 
-#include <sys/mman.h>
 
 namespace fissure {
 namespace fs = std::filesystem;
@@ -62,22 +62,19 @@ private:
 // Memory for the eigensolver's n-row blocks, on transparent huge pages where the kernel offers
 // them (madvise mode): their first touch otherwise costs a page fault per 4 KiB, ~10 µs each on
 // these KVM guests, which for the 24K tile's ~50 MB of blocks is a quarter of the whole
-// eigensolve (performance.md, "Page faults"). Contents uninitialised.
+// eigensolve (performance.md, "Page faults"). An owner over base's allocate_huge; contents
+// uninitialised (a std::vector would zero-fill the ~50 MB first).
 class HugePageBuffer {
 public:
-  explicit HugePageBuffer(std::size_t doubles) {
-    constexpr std::size_t kHugePage = std::size_t{2} << 20;
-    const std::size_t bytes = (doubles * sizeof(double) + kHugePage - 1) / kHugePage * kHugePage;
-    m_data = static_cast<double*>(std::aligned_alloc(kHugePage, std::max(bytes, kHugePage)));
-    if (!m_data) throw std::bad_alloc();
-    madvise(m_data, std::max(bytes, kHugePage), MADV_HUGEPAGE);  // advice only: failure is harmless
-  }
-  ~HugePageBuffer() { std::free(m_data); }
+  explicit HugePageBuffer(std::size_t doubles)
+      : m_bytes(doubles * sizeof(double)), m_data(static_cast<double*>(allocate_huge(m_bytes))) {}
+  ~HugePageBuffer() { release_huge(m_data, m_bytes); }
   HugePageBuffer(const HugePageBuffer&) = delete;
   HugePageBuffer& operator=(const HugePageBuffer&) = delete;
   double* data() const { return m_data; }
 
 private:
+  std::size_t m_bytes;
   double* m_data;
 };
 
