@@ -2,7 +2,7 @@
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
-
+#include "fissure/base/json_error_text.hpp"
 #include "fissure/base/number_text.hpp"
 
 #include <nlohmann/json.hpp>
@@ -132,24 +132,6 @@ std::string pattern_stats_to_json(const PatternStats& s) {
 
 namespace {
 
-// "[json.exception.parse_error.101] parse error at line 3, column 5: syntax error while parsing
-// value - invalid literal; last read: 'x'" → "syntax error at line 3, column 5: invalid
-// literal; last read: 'x'" (one line: nlohmann escapes control characters in "last read").
-std::string parse_error_text(const json::exception& e) {
-  std::string text = e.what();
-  const std::size_t bracket = text.find("] ");
-  if (bracket != std::string::npos) text = text.substr(bracket + 2);
-  if (text.rfind("parse error ", 0) == 0) text = "syntax error " + text.substr(12);
-  const std::size_t detail = text.find(": syntax error while parsing ");
-  if (detail != std::string::npos) {
-    const std::size_t dash = text.find(" - ", detail);
-    if (dash != std::string::npos) text = text.substr(0, detail) + ": " + text.substr(dash + 3);
-  }
-  for (char& c : text)
-    if (c == '\n' || c == '\r') c = ' ';
-  return text;
-}
-
 PatternStats read_fields(const json& j, const std::string& source) {
   PatternStats s;
   const json& format = field(j, "", "format");
@@ -220,7 +202,7 @@ PatternStats pattern_stats_from_json(const std::string& text, const std::string&
   try {
     j = json::parse(text);
   } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e999
-    throw IoError(source + ": not valid pattern statistics JSON: " + parse_error_text(e));
+    throw IoError(source + ": not valid pattern statistics JSON: " + json_error_text(e.what()));
   }
   try {
     return read_fields(j, source);
