@@ -8,7 +8,9 @@
 #include "fissure/fem/elastic_material.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fissure {
@@ -26,28 +28,30 @@ struct NoiseOctave {
   double frequency = 0.0;
 };
 
+/// Defaults: the bundled default material, assets/materials/ceramic-tile.json (a test keeps the
+/// two equal), so FractureParams{} is a believable porcelain floor tile.
 struct FractureParams {
-  // Material (IN, from reference tables).
-  double youngs_modulus = 3.0e10;     ///< E, Pa
-  double poisson_ratio = 0.2;         ///< ν
+  // Material (IN, from reference tables; docs/materials.md cites them).
+  double youngs_modulus = 6.0e10;     ///< E, Pa
+  double poisson_ratio = 0.22;        ///< ν
   double density = 2400.0;            ///< ρ, kg/m³
-  double resistance_mean = 3.0e6;     ///< R_cm, Pa: mean tensile strength of an element
+  double resistance_mean = 4.5e7;     ///< R_cm, Pa: mean tensile (flexural) strength of an element
   /// K_IC, Pa·√m: the energy criterion that stops a running crack (docs/architecture.md). Not in
   /// the paper's Table 2 (GMD12's criterion is not published); an advanced material field.
-  double fracture_toughness = 1.0e6;
+  double fracture_toughness = 1.2e6;
 
   // Simulation (IN).
   double age = 1.0;                   ///< duration of Algorithm 1, age units
 
   // Fitted (OPT, Table 3).
-  double stress_rate = 0.0;           ///< dσ_e, Pa per age unit (in-plane tension, see below)
-  double relax_radius = 0.05;         ///< r_relax, m
-  double relax_rate = 0.0;            ///< v_relax, Pa
-  double resistance_stddev = 0.0;     ///< R_cvar, Pa: read as a standard deviation
-  double load_factor = 0.0;           ///< l: |f| = l · m_body · g (Table 3: 0–30, i.e. 0–3000 %)
+  double stress_rate = 4.5e6;         ///< dσ_e, Pa per age unit (in-plane tension, see below)
+  double relax_radius = 0.08;         ///< r_relax, m
+  double relax_rate = 9.0e6;          ///< v_relax, Pa
+  double resistance_stddev = 6.75e6;  ///< R_cvar, Pa: read as a standard deviation
+  double load_factor = 20.0;          ///< l: |f| = l · m_body · g (Table 3: 0–30, i.e. 0–3000 %)
 
-  // Appearance (IN, set by hand).
-  std::array<NoiseOctave, 4> noise{};
+  // Appearance (IN, set by hand): S_k(x) = d̂·(x − c) + Σ_i A_i·simplex(f_i·x + offset_k).
+  std::array<NoiseOctave, 4> noise{{{0.004, 10.0}, {0.002, 20.0}, {0.001, 40.0}, {0.0005, 80.0}}};
   RelaxationChoice relaxation = RelaxationChoice::Directional;
 
   /// The exemplar's junction density (junctions per unit normalised area), kept with the material
@@ -58,22 +62,34 @@ struct FractureParams {
   ElasticMaterial elastic() const { return {youngs_modulus, poisson_ratio, density}; }
 
   /// Readable problems, one per parameter out of its range, each naming it by its JSON key (or
-  /// its CLI flag when `use_flags`) with the range: "relax_radius -1 is outside (0, 10] m".
-  /// Empty when valid.
+  /// its CLI flag when `use_flags`) with the range: "relax_radius -1 is outside (0, 100] m".
+  /// Empty when valid. Each parameter is checked on its own (no parameter's range depends on
+  /// another's: Table 3's relative priors belong to the fit).
   std::vector<std::string> problems(bool use_flags = false) const;
   /// Throws InvalidInput "fracture parameters: <problems>" when problems() is not empty.
   void validate() const;
 };
 
-/// The table of the scalar parameters of FractureParams, in the order above (noise octaves as
-/// noise_amplitude_1 … noise_frequency_4). Names are the JSON keys; flags the CLI flags.
+/// The table of the scalar parameters of FractureParams, in the order above; the noise octaves
+/// as noise_amplitude_1, noise_frequency_1, …, noise_amplitude_4, noise_frequency_4. Names are
+/// the JSON keys, flags the CLI flags. The relaxation choice is not a number: see
+/// parse_relaxation_choice. Every range is closed and finite except where a bound is excluded
+/// (ν < 0.5, r_relax > 0), so "each parameter at both ends of its range" is a testable set.
 const std::vector<ParameterInfo>& fracture_parameter_table();
 
+/// The row of the table whose name (JSON key) is `name`, or -1.
+int find_fracture_parameter(std::string_view name);
+
 /// The scalar field of `params` a table row describes (by row index), for generic readers and
-/// writers (CLI, JSON, studio panel, fit priors).
+/// writers (CLI, JSON, studio panel, fit priors). `row` < fracture_parameter_table().size().
 double& parameter_value(FractureParams& params, std::size_t row);
 double parameter_value(const FractureParams& params, std::size_t row);
 
+/// "directional", "isotropic", "from-exemplar": the JSON value and the --relaxation argument.
 const char* to_string(RelaxationChoice choice);
+/// The inverse of to_string (exact, lower case); nullopt for anything else.
+std::optional<RelaxationChoice> parse_relaxation_choice(std::string_view text);
+/// "directional, isotropic, from-exemplar", for messages that list the choices.
+const char* relaxation_choice_names();
 
 }  // namespace fissure
