@@ -1,0 +1,275 @@
+#include "fissure/fracture/material_file.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/base/json_error_text.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <set>
+#include <system_error>
+
+namespace fissure {
+namespace {
+
+using nlohmann::json;
+
+// A structural failure: "<key path> <what is wrong>", turned into one IoError naming the file.
+struct FieldError {
+  std::string text;
+};
+
+std::string type_of(const json& value) { return value.type_name(); }
+
+const json& required(const json& object, const std::string& parent, const std::string& key) {
+  const auto it = object.find(key);
+  if (it == object.end()) throw FieldError{"missing key " + parent + key};
+  return *it;
+}
+
+std::string string_field(const json& value, const std::string& path) {
+  if (!value.is_string()) throw FieldError{path + " is " + type_of(value) + ", not a string"};
+  return value.get<std::string>();
+}
+
+// Levenshtein distance, for "did you mean": keys are short, so the O(|a|·|b|) table is nothing.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// Refuses the first key of `object` not in `known`, suggesting the nearest known key when it is
+// at most 3 edits away (a typo, not another word).
+void refuse_unknown_keys(const json& object, const std::string& parent, const std::vector<std::string>& known) {
+  for (const auto& [key, value] : object.items()) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    std::string text = "unknown key " + parent + json(key).dump();
+    std::size_t best = 4;
+    std::string nearest;
+    for (const std::string& k : known) {
+      const std::size_t d = edit_distance(key, k);
+      if (d < best) {
+        best = d;
+        nearest = k;
+      }
+    }
+    if (!nearest.empty()) text += " (did you mean " + parent + nearest + "?)";
+    throw FieldError{text};
+  }
+}
+
+std::vector<std::string> parameter_keys() {
+  std::vector<std::string> keys;
+  for (const ParameterInfo& info : fracture_parameter_table()) keys.emplace_back(info.name);
+  keys.emplace_back("relaxation");
+  return keys;
+}
+
+// json::parse keeps the last of repeated keys without a word; a material file is edited by
+// hand, so a repeated key is refused. The callback sees every key as it is read.
+class RepeatedKeyCheck {
+public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: m_frames.push_back({true, {}, {}}); break;
+      case json::parse_event_t::array_start: m_frames.push_back({false, {}, {}}); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        if (!m_frames.empty()) m_frames.pop_back();
+        break;
+      case json::parse_event_t::key: {
+        Frame& top = m_frames.back();
+        std::string key = parsed.get<std::string>();
+        if (!top.keys.insert(key).second) throw FieldError{"key " + path() + key + " appears twice"};
+        top.last_key = std::move(key);
+        break;
+      }
+      case json::parse_event_t::value: break;
+    }
+    return true;
+  }
+
+private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string last_key;
+  };
+  // "parameters." for a key inside "parameters" (the open objects' keys, outermost first).
+  std::string path() const {
+    std::string p;
+    for (std::size_t i = 0; i + 1 < m_frames.size(); ++i)
+      if (m_frames[i].object) p += m_frames[i].last_key + ".";
+    return p;
+  }
+  std::vector<Frame> m_frames;
+};
+
+FractureMaterial read_fields(const json& j, std::vector<std::string>& range_problems) {
+  if (!j.is_object()) throw FieldError{"the document is " + type_of(j) + ", not an object"};
+  // Schema and version first: a file of another kind or version is named as such, not as a
+  // list of missing keys.
+  const json& schema = required(j, "", "schema");
+  if (schema != kMaterialSchema) {
+    throw FieldError{"schema " + schema.dump() + " is not \"" + kMaterialSchema + "\" (not a Fissure material file)"};
+  }
+  const json& version = required(j, "", "version");
+  if (!version.is_number_integer() || version.get<std::int64_t>() != kMaterialVersion) {
+    throw FieldError{"version " + version.dump() + " is not the supported version " + std::to_string(kMaterialVersion)};
+  }
+  refuse_unknown_keys(j, "", {"schema", "version", "name", "description", "provenance", "parameters"});
+
+  FractureMaterial m;
+  m.name = string_field(required(j, "", "name"), "name");
+  if (m.name.empty()) throw FieldError{"name is empty"};
+  if (j.contains("description")) m.description = string_field(j["description"], "description");
+  if (j.contains("provenance")) {
+    const json& p = j["provenance"];
+    if (!p.is_array()) throw FieldError{"provenance is " + type_of(p) + ", not an array of strings"};
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      m.provenance.push_back(string_field(p[i], "provenance[" + std::to_string(i) + "]"));
+    }
+  }
+
+  const json& params = required(j, "", "parameters");
+  if (!params.is_object()) throw FieldError{"parameters is " + type_of(params) + ", not an object"};
+  refuse_unknown_keys(params, "parameters.", parameter_keys());
+  const auto& table = fracture_parameter_table();
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    const std::string path = std::string("parameters.") + table[i].name;
+    const json& value = required(params, "parameters.", table[i].name);
+    if (!value.is_number()) throw FieldError{path + " is " + type_of(value) + ", not a number"};
+    const double v = value.get<double>();
+    parameter_value(m.params, i) = v;
+    std::string problem = parameter_problem(table[i], v, path);
+    if (!problem.empty()) range_problems.push_back(std::move(problem));
+  }
+  const json& relaxation = required(params, "parameters.", "relaxation");
+  const std::optional<RelaxationChoice> choice =
+      relaxation.is_string() ? parse_relaxation_choice(relaxation.get<std::string>()) : std::nullopt;
+  if (!choice) {
+    throw FieldError{"parameters.relaxation is " + relaxation.dump() + ", not one of " + relaxation_choice_names()};
+  }
+  m.params.relaxation = *choice;
+  return m;
+}
+
+std::string material_context(const std::string& name) { return "material " + json(name).dump(); }
+
+}  // namespace
+
+std::string material_to_json(const FractureMaterial& m) {
+  if (m.name.empty()) throw InvalidInput("material: the name is empty");
+  throw_if_problems(material_context(m.name), m.params.problems());
+  // ordered_json: the file lists keys in the table's order, the order a reader expects.
+  nlohmann::ordered_json params = nlohmann::ordered_json::object();
+  const auto& table = fracture_parameter_table();
+  for (std::size_t i = 0; i < table.size(); ++i) params[table[i].name] = parameter_value(m.params, i);
+  params["relaxation"] = to_string(m.params.relaxation);
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  out["schema"] = kMaterialSchema;
+  out["version"] = kMaterialVersion;
+  out["name"] = m.name;
+  out["description"] = m.description;
+  out["provenance"] = m.provenance;
+  out["parameters"] = std::move(params);
+  // nlohmann writes doubles in their shortest round-trip form: reading gives the same bits.
+  return out.dump(2) + "\n";
+}
+
+FractureMaterial material_from_json(const std::string& text, const std::string& source) {
+  const std::string bad = source + ": not a valid material file: ";
+  json j;
+  try {
+    j = json::parse(text, RepeatedKeyCheck{});
+  } catch (const json::exception& e) {  // parse_error, or out_of_range for a number like 1e999
+    throw IoError(bad + json_error_text(e.what()));
+  } catch (const FieldError& e) {
+    throw IoError(bad + e.text);
+  }
+  std::vector<std::string> range_problems;
+  FractureMaterial m;
+  try {
+    m = read_fields(j, range_problems);
+  } catch (const FieldError& e) {
+    throw IoError(bad + e.text);
+  }
+  throw_if_problems(source + ": " + material_context(m.name), range_problems);
+  return m;
+}
+
+void save_material(const std::filesystem::path& path, const FractureMaterial& material) {
+  write_file_atomically(path, material_to_json(material));
+}
+
+FractureMaterial load_material(const std::filesystem::path& path) {
+  return material_from_json(read_file(path), path.string());
+}
+
+std::vector<std::filesystem::path> material_directories() {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> candidates;
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    // bin/fissure and tests sit one level below the prefix, libexec/fissure/fissure-<command>
+    // two.
+    const fs::path dir = self.parent_path();
+    candidates.push_back(dir.parent_path() / "share" / "fissure" / "materials");
+    candidates.push_back(dir.parent_path().parent_path() / "share" / "fissure" / "materials");
+  }
+  candidates.emplace_back(FISSURE_ASSETS_DIR "/materials");
+  std::vector<fs::path> out;
+  for (const fs::path& c : candidates) {
+    if (fs::is_directory(c, error) && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+  }
+  return out;
+}
+
+std::vector<std::string> bundled_material_names() {
+  namespace fs = std::filesystem;
+  std::vector<std::string> names;
+  for (const fs::path& dir : material_directories()) {
+    std::vector<std::string> here;
+    std::error_code error;
+    for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
+      if (entry.path().extension() == ".json" && entry.is_regular_file(error)) here.push_back(entry.path().stem().string());
+    }
+    std::sort(here.begin(), here.end());
+    for (std::string& name : here)
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(std::move(name));
+  }
+  return names;
+}
+
+std::filesystem::path find_material(const std::string& name_or_path) {
+  namespace fs = std::filesystem;
+  const bool is_path = name_or_path.find('/') != std::string::npos ||
+                       (name_or_path.size() >= 5 && name_or_path.ends_with(".json"));
+  if (is_path) return name_or_path;
+  if (!name_or_path.empty()) {
+    for (const fs::path& dir : material_directories()) {
+      const fs::path candidate = dir / (name_or_path + ".json");
+      std::error_code error;
+      if (fs::is_regular_file(candidate, error)) return candidate;
+    }
+  }
+  std::string list;
+  for (const std::string& name : bundled_material_names()) list += (list.empty() ? "" : ", ") + name;
+  throw InvalidInput(material_context(name_or_path) + " is not a file or a bundled material (bundled: " +
+                     (list.empty() ? std::string("none found") : list) + ")");
+}
+
+}  // namespace fissure
