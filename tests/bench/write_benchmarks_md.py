@@ -33,6 +33,11 @@ SECTION_NOTES = {
                  "`bench_machine`'s bandwidth beyond L2 (6.7 MB in double, 3.3 MB in float at 24K; the "
                  "machines of this project read 21–75 GB/s there, which puts the floor at 0.09–0.3 ms). "
                  "The float copy's error is in `bench_modal_accuracy`.",
+    "bench_materials": "Per-trial and per-command costs of the fracture parameters, one thread. "
+                       "`DrawResistance/tets:N/spread:S`: the per-tet resistance field (draw_resistance), R_cvar = "
+                       "S % of R_cm; at S = 100 (Table 3's largest) 17 % of the normal draws fall below the "
+                       "0.05·R_cm floor and are resampled. `ReadMaterial`: parse and validate the default "
+                       "material file from memory.",
     "bench_mesh_convergence": "Time against error of the mesh resolution: the bench_fem load case solved directly "
                               "on tiles of increasing tet count, against a 200K-tet reference (`reference_tets`). "
                               "Time = meshing + assembly + factorisation + solve + stress. Errors in %: compliance "
