@@ -1,0 +1,183 @@
+#include "fissure/fracture/fracture_result.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+namespace fissure {
+namespace {
+
+class UnionFind {
+public:
+  int add() {
+    m_parent.push_back(static_cast<int>(m_parent.size()));
+    return m_parent.back();
+  }
+  void reserve(std::size_t n) { m_parent.reserve(n); }
+  int find(int x) {
+    while (m_parent[static_cast<std::size_t>(x)] != x) {
+      m_parent[static_cast<std::size_t>(x)] = m_parent[static_cast<std::size_t>(m_parent[static_cast<std::size_t>(x)])];
+      x = m_parent[static_cast<std::size_t>(x)];
+    }
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) m_parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  std::size_t size() const { return m_parent.size(); }
+
+private:
+  std::vector<int> m_parent;
+};
+
+// The seven probe points of a face, as weights on its three nodes.
+constexpr double kProbes[7][3] = {{0.8, 0.1, 0.1},   {0.1, 0.8, 0.1},   {0.1, 0.1, 0.8},   {0.45, 0.45, 0.1},
+                                  {0.1, 0.45, 0.45}, {0.45, 0.1, 0.45}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+
+struct CutRef {
+  int crack;
+  const CrackCut* cut;
+};
+
+class PieceLabeller {
+public:
+  PieceLabeller(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int count)
+      : m_mesh(mesh), m_cuts(static_cast<std::size_t>(mesh.tet_count())) {
+    for (int k = 0; k < count; ++k) {
+      for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) m_cuts[static_cast<std::size_t>(c.tet)].push_back({k, &c});
+    }
+    // Uncut tets are one piece each, with the tet's index as its id.
+    m_sets.reserve(static_cast<std::size_t>(mesh.tet_count()));
+    for (int t = 0; t < mesh.tet_count(); ++t) m_sets.add();
+  }
+
+  // The piece of `tet` holding the point with weights `w` on its local nodes.
+  int piece(int tet, const std::array<double, 4>& w, bool create) {
+    const auto& cuts = m_cuts[static_cast<std::size_t>(tet)];
+    if (cuts.empty()) return tet;
+    std::string key(cuts.size(), '\0');
+    for (std::size_t i = 0; i < cuts.size(); ++i) {
+      const CrackCut& c = *cuts[i].cut;
+      char code = value(c, w) > 0.0 ? 1 : 2;
+      if (c.clipped_by >= 0) {
+        // The crack exists only on its arrival side of the crack it stopped on.
+        for (const CutRef& other : cuts) {
+          if (other.crack == c.clipped_by && c.clip_side * value(*other.cut, w) < 0.0) code = 0;
+        }
+      }
+      key[i] = code;
+    }
+    auto& pieces = m_pieces[tet];
+    for (const auto& [k, id] : pieces) {
+      if (k == key) return id;
+    }
+    if (!create) return -1;
+    const int id = m_sets.add();
+    pieces.emplace_back(std::move(key), id);
+    return id;
+  }
+
+  FragmentLabels label() {
+    const auto& tets = m_mesh.tets();
+    for (int t = 0; t < m_mesh.tet_count(); ++t) {
+      for (int f = 0; f < 4; ++f) {
+        const int u = m_mesh.neighbours()(t, f);
+        if (u < t) continue;  // each shared face once; boundary faces (−1) skipped
+        const bool cut = !m_cuts[static_cast<std::size_t>(t)].empty() || !m_cuts[static_cast<std::size_t>(u)].empty();
+        if (!cut) {
+          m_sets.unite(t, u);
+          continue;
+        }
+        const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
+        for (const auto& probe : kProbes) {
+          std::array<double, 4> wt{}, wu{};
+          for (int i = 0; i < 3; ++i) {
+            const int node = tets(t, face[static_cast<std::size_t>(i)]);
+            wt[static_cast<std::size_t>(face[static_cast<std::size_t>(i)])] = probe[i];
+            for (int j = 0; j < 4; ++j) {
+              if (tets(u, j) == node) wu[static_cast<std::size_t>(j)] = probe[i];
+            }
+          }
+          m_sets.unite(piece(t, wt, true), piece(u, wu, true));
+        }
+      }
+    }
+    FragmentLabels labels;
+    labels.fragment_of_tet.resize(static_cast<std::size_t>(m_mesh.tet_count()));
+    std::vector<int> centre_piece(static_cast<std::size_t>(m_mesh.tet_count()));
+    for (int t = 0; t < m_mesh.tet_count(); ++t) centre_piece[static_cast<std::size_t>(t)] = piece(t, {0.25, 0.25, 0.25, 0.25}, true);
+    // Number fragments by the lowest tet whose centroid lies in them; pieces holding no centroid
+    // (slivers cut off by cracks) count after those, in order of their ids.
+    std::vector<int> number(m_sets.size(), -1);
+    for (int t = 0; t < m_mesh.tet_count(); ++t) {
+      const int root = m_sets.find(centre_piece[static_cast<std::size_t>(t)]);
+      if (number[static_cast<std::size_t>(root)] < 0) number[static_cast<std::size_t>(root)] = labels.count++;
+      labels.fragment_of_tet[static_cast<std::size_t>(t)] = number[static_cast<std::size_t>(root)];
+    }
+    for (std::size_t id = 0; id < m_sets.size(); ++id) {
+      // The first #tets ids are the uncut tets' single pieces; a cut tet's id is unused.
+      if (id < m_cuts.size() && !m_cuts[id].empty()) continue;
+      const int root = m_sets.find(static_cast<int>(id));
+      if (number[static_cast<std::size_t>(root)] < 0) number[static_cast<std::size_t>(root)] = labels.count++;
+    }
+    return labels;
+  }
+
+  // Cracks that separate no piece of any tet they cut from its other side: partial cracks.
+  // Call after label().
+  std::vector<int> partial_cracks(int count) {
+    std::vector<char> separates(static_cast<std::size_t>(count), 0);
+    for (const auto& [tet, pieces] : m_pieces) {
+      const auto& cuts = m_cuts[static_cast<std::size_t>(tet)];
+      for (std::size_t i = 0; i < cuts.size(); ++i) {
+        if (separates[static_cast<std::size_t>(cuts[i].crack)]) continue;
+        for (const auto& [ka, ia] : pieces) {
+          for (const auto& [kb, ib] : pieces) {
+            // Two pieces on opposite sides of crack i, alike otherwise.
+            if (ka[i] != 1 || kb[i] != 2) continue;
+            bool alike = true;
+            for (std::size_t j = 0; j < ka.size() && alike; ++j) alike = j == i || ka[j] == kb[j];
+            if (alike && m_sets.find(ia) != m_sets.find(ib)) separates[static_cast<std::size_t>(cuts[i].crack)] = 1;
+          }
+        }
+      }
+    }
+    std::vector<int> partial;
+    for (int k = 0; k < count; ++k) {
+      if (!separates[static_cast<std::size_t>(k)]) partial.push_back(k);
+    }
+    return partial;
+  }
+
+private:
+  static double value(const CrackCut& c, const std::array<double, 4>& w) {
+    return w[0] * c.node_values[0] + w[1] * c.node_values[1] + w[2] * c.node_values[2] + w[3] * c.node_values[3];
+  }
+
+  const TetMesh& m_mesh;
+  std::vector<std::vector<CutRef>> m_cuts;
+  std::unordered_map<int, std::vector<std::pair<std::string, int>>> m_pieces;
+  UnionFind m_sets;
+};
+
+}  // namespace
+
+FragmentLabels label_fragments(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int crack_count,
+                               std::vector<int>* partial_cracks) {
+  crack_count = std::clamp(crack_count, 0, static_cast<int>(cracks.size()));
+  PieceLabeller labeller(mesh, cracks, crack_count);
+  FragmentLabels labels = labeller.label();
+  if (partial_cracks) *partial_cracks = labeller.partial_cracks(crack_count);
+  return labels;
+}
+
+int FractureResult::crack_count_at(double age) const {
+  const auto it = std::upper_bound(cracks.begin(), cracks.end(), age,
+                                   [](double a, const CrackSurface& c) { return a < c.time; });
+  return static_cast<int>(it - cracks.begin());
+}
+
+}  // namespace fissure

@@ -1,0 +1,506 @@
+#include "fissure/fracture/simulation.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
+#include "fissure/base/rng.hpp"
+#include "fissure/exemplar/pattern_stats.hpp"
+#include "fissure/fracture/crack_noise.hpp"
+#include "nearest_seed.hpp"
+#include "polygon_geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <queue>
+#include <tuple>
+
+namespace fissure {
+namespace {
+
+using Voigt = Eigen::Matrix<double, 6, 1>;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double normal_component(const Voigt& s, const Eigen::Vector3d& d) {
+  return d.x() * d.x() * s(0) + d.y() * d.y() * s(1) + d.z() * d.z() * s(2) +
+         2.0 * (d.y() * d.z() * s(3) + d.x() * d.z() * s(4) + d.x() * d.y() * s(5));
+}
+
+Voigt outer(const Eigen::Vector3d& d) {
+  Voigt v;
+  v << d.x() * d.x(), d.y() * d.y(), d.z() * d.z(), d.y() * d.z(), d.x() * d.z(), d.x() * d.y();
+  return v;
+}
+
+// The largest normal stress over directions in the plane orthogonal to n: the top eigenvalue of
+// σ restricted to that plane.
+double tangent_max(const Voigt& s, const Eigen::Vector3d& n) {
+  const Eigen::Vector3d a = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d u = n.cross(a).normalized();
+  const Eigen::Vector3d v = n.cross(u);
+  const Eigen::Matrix3d t = voigt_to_tensor(s);
+  const double uu = u.dot(t * u), vv = v.dot(t * v), uv = u.dot(t * v);
+  return 0.5 * (uu + vv) + std::sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv);
+}
+
+// One heap entry of Algorithm 1's event queue: the earliest time the tet may cross its
+// resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
+// rule for cracks due at one instant, e.g. at t = 0), then by tet index.
+struct Event {
+  double time;
+  double neg_ratio;
+  int tet;
+  bool operator>(const Event& o) const { return std::tie(time, neg_ratio, tet) > std::tie(o.time, o.neg_ratio, o.tet); }
+};
+
+class Simulation {
+public:
+  Simulation(const FractureBody& body, const FractureParams& params, const StressField& initial,
+             const Eigen::VectorXd& resistance, std::uint64_t seed, const SimulationOptions& options)
+      : m_body(body), m_mesh(body.mesh()), m_params(params), m_resistance(resistance), m_seed(seed),
+        m_options(options), m_propagation(m_mesh) {
+    const auto n = static_cast<std::size_t>(m_mesh.tet_count());
+    m_stress.resize(n);
+    for (std::size_t t = 0; t < n; ++t) m_stress[t] = initial.row(static_cast<Eigen::Index>(t)).transpose();
+    m_base_time.assign(n, 0.0);
+    m_initiable.assign(n, 1);
+    m_cuts_of_tet.resize(n);
+    m_node_value.assign(static_cast<std::size_t>(m_mesh.node_count()), 0.0);
+    m_node_stamp.assign(static_cast<std::size_t>(m_mesh.node_count()), -1);
+    m_flood_stamp.assign(n, -1);
+    m_snap = 1e-6 * body.mean_edge_length();
+    m_gc = critical_energy_release_rate(params);
+    m_flaw = flaw_size(params);
+    m_directional = resolve_directional();
+  }
+
+  FractureResult run() {
+    FractureResult result;
+    double now = m_options.fixed_time_step > 0.0 ? run_fixed_steps(result) : run_events(result);
+    result.simulated_age = result.crack_limit_reached ? now : m_params.age;
+    result.cracks = std::move(m_cracks);
+    result.fragments =
+        label_fragments(m_mesh, result.cracks, static_cast<int>(result.cracks.size()), &result.partial_cracks);
+    if (m_options.progress) m_options.progress->report("simulate", 1.0);
+    return result;
+  }
+
+private:
+  void after_crack(double now) {
+    if ((m_cracks.size() & 63u) == 0) {
+      if (m_options.cancel) m_options.cancel->throw_if_cancelled();
+      if (m_options.progress) m_options.progress->report("simulate", m_params.age > 0.0 ? now / m_params.age : 1.0);
+    }
+  }
+
+  // Algorithm 1 as printed: t = 0, Δt, 2Δt, … < age (and a last test at age itself); at each t
+  // every element over its resistance cracks, the largest ratio first, re-tested after each
+  // crack's relaxation.
+  double run_fixed_steps(FractureResult& result) {
+    const double step = m_options.fixed_time_step;
+    double now = 0.0;
+    for (long long i = 0;; ++i) {
+      now = std::min(static_cast<double>(i) * step, m_params.age);
+      for (;;) {
+        int best = -1;
+        double best_ratio = 1.0;
+        for (int t = 0; t < m_mesh.tet_count(); ++t) {
+          if (!m_initiable[static_cast<std::size_t>(t)]) continue;
+          const double r = ratio(t, now);
+          if (r >= best_ratio && (best < 0 || r > best_ratio)) {
+            best = t;
+            best_ratio = r;
+          }
+        }
+        if (best < 0) break;
+        if (static_cast<int>(m_cracks.size()) >= m_options.max_cracks) {
+          result.crack_limit_reached = true;
+          return now;
+        }
+        open_crack(best, now);
+        after_crack(now);
+      }
+      if (now >= m_params.age) break;
+    }
+    return now;
+  }
+
+  double run_events(FractureResult& result) {
+    const double age = m_params.age;
+    std::priority_queue<Event, std::vector<Event>, std::greater<>> queue;
+    for (int t = 0; t < m_mesh.tet_count(); ++t) {
+      const double when = crossing_time(t, 0.0);
+      if (when <= age) queue.push({when, -ratio(t, when), t});
+    }
+    double now = 0.0;
+    while (!queue.empty()) {
+      const Event e = queue.top();
+      if (e.time > age) break;
+      queue.pop();
+      if (!m_initiable[static_cast<std::size_t>(e.tet)]) continue;
+      // The entry may be stale: relaxation since it was pushed can only have delayed it.
+      const double when = crossing_time(e.tet, e.time);
+      if (when > e.time) {
+        if (when <= age) queue.push({when, -ratio(e.tet, when), e.tet});
+        continue;
+      }
+      if (static_cast<int>(m_cracks.size()) >= m_options.max_cracks) {
+        result.crack_limit_reached = true;
+        break;
+      }
+      now = e.time;
+      open_crack(e.tet, now);
+      after_crack(now);
+    }
+    return now;
+  }
+
+  bool resolve_directional() const {
+    switch (m_params.relaxation) {
+      case RelaxationChoice::Directional: return true;
+      case RelaxationChoice::Isotropic: return false;
+      case RelaxationChoice::FromExemplar: {
+        const double angle = m_options.exemplar_mean_junction_angle_deg;
+        if (!std::isfinite(angle)) {
+          throw InvalidInput("relaxation 'from-exemplar' needs an exemplar's mean junction angle; choose 'directional' "
+                             "or 'isotropic', or fit the material to an exemplar");
+        }
+        return relaxation_mode_for(angle) == RelaxationMode::Directional;
+      }
+    }
+    return true;
+  }
+
+  // σ_e at time t ≥ its base time: the stored stress plus the in-plane increase since.
+  Voigt stress_at(int tet, double t) const {
+    const auto e = static_cast<std::size_t>(tet);
+    const double dt = t - m_base_time[e];
+    if (dt == 0.0 || m_params.stress_rate == 0.0) return m_stress[e];
+    return m_stress[e] + (dt * m_params.stress_rate) * m_body.tangent_projectors().row(tet).transpose();
+  }
+
+  double ratio(int tet, double t) const {
+    return max_principal_stress(stress_at(tet, t)) / m_resistance(tet);
+  }
+
+  // The first time ≥ t at which λ_max(σ_e) ≥ R_e, or +∞. λ_max(σ + τ·rate·P) is non-decreasing
+  // (P ⪰ 0) and convex in τ, bracketed by τ_lo = (R − λ)/rate (λ_max grows at most at `rate`) and
+  // τ_hi = (R − μ)/rate with μ the largest in-plane normal stress (which grows at exactly `rate`).
+  // Safeguarded Newton; the time returned always satisfies the test, evaluated exactly as the
+  // caller will evaluate it, so a popped event is never re-queued for round-off.
+  double crossing_time(int tet, double t) const {
+    const double r = m_resistance(tet);
+    const MaxPrincipal now = max_principal_with_direction(stress_at(tet, t));
+    if (now.value >= r) return t;
+    const double rate = m_params.stress_rate;
+    if (rate <= 0.0) return kInf;
+    const Eigen::Vector3d normal = m_body.surface_normals().row(tet).transpose();
+    double lo = t + (r - now.value) / rate;
+    double hi = t + (r - tangent_max(stress_at(tet, t), normal)) / rate;
+    if (!(hi < kInf)) return kInf;
+    if (max_principal_stress(stress_at(tet, lo)) >= r) return lo;
+    // Newton from the upper end: on a convex increasing function it decreases monotonically to
+    // the root and stays on the side where the test holds.
+    double x = hi;
+    for (int it = 0; it < 60; ++it) {
+      const MaxPrincipal m = max_principal_with_direction(stress_at(tet, x));
+      if (m.value < r) {  // round-off crossed the root: bisect the bracket instead
+        lo = x;
+        x = 0.5 * (lo + hi);
+        continue;
+      }
+      hi = x;
+      const Eigen::Vector3d& d = m.direction;
+      const double slope = rate * (1.0 - std::pow(d.dot(normal), 2));
+      double next = slope > 0.0 ? x - (m.value - r) / slope : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (hi - lo <= 1e-13 * std::max(1.0, std::abs(hi)) || m.value - r <= 1e-13 * r) break;
+      x = next;
+    }
+    return hi;
+  }
+
+  double node_value(int crack, const CrackSurfaceFunction& surface, int node) {
+    const auto v = static_cast<std::size_t>(node);
+    if (m_node_stamp[v] != crack) {
+      double s = surface(m_mesh.nodes().row(node).transpose());
+      // No node exactly on a crack: zero-area pieces would follow (paper-gaps §3).
+      if (std::abs(s) < m_snap) s = s < 0.0 ? -m_snap : m_snap;
+      m_node_value[v] = s;
+      m_node_stamp[v] = crack;
+    }
+    return m_node_value[v];
+  }
+
+  CrackCut make_cut(int crack, const CrackSurfaceFunction& surface, int tet) {
+    CrackCut cut;
+    cut.tet = tet;
+    for (int i = 0; i < 4; ++i) cut.node_values[static_cast<std::size_t>(i)] = node_value(crack, surface, m_mesh.tets()(tet, i));
+    return cut;
+  }
+
+  Eigen::Matrix<double, 4, 3> tet_nodes(int tet) const {
+    Eigen::Matrix<double, 4, 3> p;
+    for (int i = 0; i < 4; ++i) p.row(i) = m_mesh.nodes().row(m_mesh.tets()(tet, i));
+    return p;
+  }
+
+  bool changes_sign(const CrackCut& cut) const {
+    bool pos = false, neg = false;
+    for (double v : cut.node_values) (v > 0.0 ? pos : neg) = true;
+    return pos && neg;
+  }
+
+  void open_crack(int origin, double t) {
+    const int k = static_cast<int>(m_cracks.size());
+    const MaxPrincipal principal = max_principal_with_direction(stress_at(origin, t));
+    CrackSurface crack;
+    crack.id = k;
+    crack.time = t;
+    crack.origin_tet = origin;
+    crack.origin = m_mesh.centroid(origin);
+    crack.normal = principal.direction;
+    crack.opening_stress = principal.value;
+    crack.noise_seed = Rng::derive(m_seed, "crack_noise", static_cast<std::uint64_t>(k)).next_u64();
+    CrackSurfaceFunction surface(crack.origin, crack.normal, m_params.noise, crack.noise_seed);
+    // Make the P1 interpolant vanish at the origin's centroid (the mean of its node values), so
+    // the opening element is always cut, however large the noise.
+    double mean = 0.0;
+    for (int i = 0; i < 4; ++i) mean += surface(m_mesh.nodes().row(m_mesh.tets()(origin, i)).transpose());
+    surface.subtract(0.25 * mean);
+
+    // Flood (paper-gaps §3): breadth first through the faces the surface crosses, with the
+    // energy budget B (docs/architecture.md): each tet adds A_e (G_e − G_c), where
+    // G_e = π a σ_n² / E is Griffith's release rate for a crack of size a = max(√(A/π), a_f)
+    // under the normal stress σ_n across it; a tet that would drive B below zero is not entered.
+    std::vector<CrackCut>& cuts = crack.cuts;
+    std::deque<int> frontier;
+    double budget = 0.0, area = 0.0;
+    auto release = [&](int tet, const std::vector<Eigen::Vector3d>& polygon) {
+      const Eigen::Vector3d av = detail::polygon_area_vector(polygon);
+      const double a_e = 0.5 * av.norm();
+      if (a_e <= 0.0) return std::pair{0.0, 0.0};
+      const double sn = std::max(0.0, normal_component(stress_at(tet, t), av / av.norm()));
+      const double size = std::max(std::sqrt(area / kPi), m_flaw);
+      return std::pair{a_e * (kPi * size * sn * sn / m_params.youngs_modulus - m_gc), a_e};
+    };
+    {
+      CrackCut first = make_cut(k, surface, origin);
+      const auto [gain, a_e] = release(origin, crack_polygon(tet_nodes(origin), first));
+      budget = std::max(0.0, gain);
+      area = a_e;
+      cuts.push_back(first);
+      m_flood_stamp[static_cast<std::size_t>(origin)] = k;
+      frontier.push_back(origin);
+    }
+    std::vector<int> stopped_on;
+    while (!frontier.empty()) {
+      const int tet = frontier.front();
+      frontier.pop_front();
+      for (int f = 0; f < 4; ++f) {
+        const int u = m_mesh.neighbours()(tet, f);
+        if (u < 0 || m_flood_stamp[static_cast<std::size_t>(u)] == k) continue;
+        // Only through faces the surface crosses: the face's three nodes change sign.
+        const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
+        bool pos = false, neg = false;
+        for (int i : face) (node_value(k, surface, m_mesh.tets()(tet, i)) > 0.0 ? pos : neg) = true;
+        if (!(pos && neg)) continue;
+        CrackCut cut = make_cut(k, surface, u);
+        const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
+        if (!earlier.empty()) {
+          // Crack meets crack: end on the earliest crack cutting u, on the side it arrived from
+          // (the side holding the middle of this crack's trace on the shared face).
+          const auto [j, j_cut] = earlier.front();
+          const CrackCut& other = m_cracks[static_cast<std::size_t>(j)].cuts[static_cast<std::size_t>(j_cut)];
+          cut.clipped_by = j;
+          cut.clip_side = arrival_side(tet, f, u, k, surface, other);
+          m_flood_stamp[static_cast<std::size_t>(u)] = k;
+          cuts.push_back(cut);
+          stopped_on.push_back(j);
+          continue;
+        }
+        const auto polygon = crack_polygon(tet_nodes(u), cut);
+        const auto [gain, a_e] = release(u, polygon);
+        if (gain < 0.0 && budget + gain < 0.0) continue;  // arrest here; another face may still reach u
+        budget += gain;
+        area += a_e;
+        m_flood_stamp[static_cast<std::size_t>(u)] = k;
+        cuts.push_back(cut);
+        frontier.push_back(u);
+      }
+    }
+    std::sort(stopped_on.begin(), stopped_on.end());
+    stopped_on.erase(std::unique(stopped_on.begin(), stopped_on.end()), stopped_on.end());
+    crack.stopped_on = std::move(stopped_on);
+
+    // Polygons of every cut (clipped at junctions), for the crack's area and the relaxation.
+    std::vector<std::vector<Eigen::Vector3d>> polygons(cuts.size());
+    std::vector<Eigen::Vector3d> normals(cuts.size());
+    double total_area = 0.0;
+    for (std::size_t i = 0; i < cuts.size(); ++i) {
+      const CrackCut& c = cuts[i];
+      const CrackCut* clip = nullptr;
+      if (c.clipped_by >= 0) clip = &cut_of(c.clipped_by, c.tet);
+      polygons[i] = crack_polygon(tet_nodes(c.tet), c, clip);
+      const Eigen::Vector3d av = detail::polygon_area_vector(polygons[i]);
+      normals[i] = av.norm() > 0.0 ? Eigen::Vector3d(av.normalized()) : crack.normal;
+      total_area += 0.5 * av.norm();
+    }
+    crack.area = total_area;
+    for (std::size_t i = 0; i < cuts.size(); ++i) {
+      const auto tet = static_cast<std::size_t>(cuts[i].tet);
+      m_initiable[tet] = 0;
+      m_cuts_of_tet[tet].emplace_back(k, static_cast<int>(i));
+    }
+    m_cracks.push_back(std::move(crack));
+    relax(polygons, normals, t);
+  }
+
+  const CrackCut& cut_of(int crack, int tet) const {
+    for (const auto& [j, index] : m_cuts_of_tet[static_cast<std::size_t>(tet)]) {
+      if (j == crack) return m_cracks[static_cast<std::size_t>(j)].cuts[static_cast<std::size_t>(index)];
+    }
+    throw NumericalFailure("fracture simulation: crack " + std::to_string(crack) + " does not cut " + m_mesh.tet_label(tet));
+  }
+
+  // ±1: the sign of crack `other`'s P1 interpolant (in tet u) at the middle of crack k's trace on
+  // the face through which k arrives from `from` (its local face f).
+  int arrival_side(int from, int f, int u, int k, const CrackSurfaceFunction& surface, const CrackCut& other) {
+    const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (int a = 0; a < 3; ++a) {
+      const int na = m_mesh.tets()(from, face[static_cast<std::size_t>(a)]);
+      const int nb = m_mesh.tets()(from, face[static_cast<std::size_t>((a + 1) % 3)]);
+      const double va = node_value(k, surface, na), vb = node_value(k, surface, nb);
+      if ((va > 0.0) == (vb > 0.0)) continue;
+      const double s = va / (va - vb);
+      sum += m_mesh.nodes().row(na).transpose() + s * (m_mesh.nodes().row(nb) - m_mesh.nodes().row(na)).transpose();
+      ++count;
+    }
+    const Eigen::Vector3d mid = count ? Eigen::Vector3d(sum / count) : m_mesh.centroid(from);
+    // Barycentric coordinates of `mid` in u give the P1 value of `other` there.
+    const auto p = tet_nodes(u);
+    Eigen::Matrix3d a;
+    a.col(0) = (p.row(1) - p.row(0)).transpose();
+    a.col(1) = (p.row(2) - p.row(0)).transpose();
+    a.col(2) = (p.row(3) - p.row(0)).transpose();
+    const Eigen::Vector3d b = a.partialPivLu().solve(mid - p.row(0).transpose());
+    const double value = (1.0 - b.sum()) * other.node_values[0] + b(0) * other.node_values[1] +
+                         b(1) * other.node_values[2] + b(2) * other.node_values[3];
+    return value >= 0.0 ? 1 : -1;
+  }
+
+  // Eqs. 2–4 around the new crack, in every tet within r_relax of its polygons (distances
+  // through the body, by nearest-polygon propagation). Tensile-only clamp (paper-gaps §4,
+  // reading b): at most the tensile normal stress along d is removed, so λ_max never rises.
+  void relax(const std::vector<std::vector<Eigen::Vector3d>>& polygons, const std::vector<Eigen::Vector3d>& normals,
+             double t) {
+    const double radius = m_params.relax_radius, rate = m_params.relax_rate;
+    if (rate <= 0.0 || radius <= 0.0) return;
+    const auto& cuts = m_cracks.back().cuts;
+    std::vector<std::pair<int, int>> seeds;
+    seeds.reserve(cuts.size());
+    for (std::size_t i = 0; i < cuts.size(); ++i) seeds.emplace_back(cuts[i].tet, static_cast<int>(i));
+    m_propagation.run(
+        seeds,
+        [&](int tet, int i) {
+          return detail::polygon_distance(m_mesh.centroid(tet), polygons[static_cast<std::size_t>(i)],
+                                          normals[static_cast<std::size_t>(i)]);
+        },
+        radius);
+    for (int tet : m_propagation.reached()) {
+      const double phi = relaxation_kernel(m_propagation.distance_of(tet), radius);
+      if (phi <= 0.0) continue;
+      Voigt s = stress_at(tet, t);
+      if (m_directional) {
+        // d: orthogonal to the nearest surface normal and to the crack's path along the
+        // surface, i.e. the crack normal projected on the tangent plane (paper §5.2).
+        const Eigen::Vector3d n_s = m_body.surface_normals().row(tet).transpose();
+        const Eigen::Vector3d& c = normals[static_cast<std::size_t>(m_propagation.seed_of(tet))];
+        Eigen::Vector3d d = c - c.dot(n_s) * n_s;
+        d = d.norm() > 0.1 ? Eigen::Vector3d(d.normalized()) : c;  // a crack parallel to the surface
+        const double amount = std::min(rate * phi, std::max(0.0, normal_component(s, d)));
+        s -= amount * outer(d);
+      } else {
+        const double amount = std::min(rate * phi, std::max(0.0, max_principal_stress(s)));
+        s.head<3>().array() -= amount;
+      }
+      m_stress[static_cast<std::size_t>(tet)] = s;
+      m_base_time[static_cast<std::size_t>(tet)] = t;
+    }
+  }
+
+  const FractureBody& m_body;
+  const TetMesh& m_mesh;
+  const FractureParams& m_params;
+  const Eigen::VectorXd& m_resistance;
+  std::uint64_t m_seed;
+  SimulationOptions m_options;
+  detail::NearestSeedPropagation m_propagation;
+  std::vector<Voigt> m_stress;
+  std::vector<double> m_base_time;
+  std::vector<char> m_initiable;
+  std::vector<std::vector<std::pair<int, int>>> m_cuts_of_tet;  // (crack, index of its cut)
+  std::vector<double> m_node_value;
+  std::vector<int> m_node_stamp;
+  std::vector<int> m_flood_stamp;
+  std::vector<CrackSurface> m_cracks;
+  double m_snap = 0.0, m_gc = 0.0, m_flaw = 0.0;
+  bool m_directional = true;
+
+};
+
+void check_inputs(const FractureBody& body, const FractureParams& params, const StressField& initial,
+                  const Eigen::VectorXd& resistance, const SimulationOptions& options) {
+  params.validate();
+  const TetMesh& mesh = body.mesh();
+  if (initial.rows() != mesh.tet_count()) {
+    throw InvalidInput("fracture simulation: the initial stress has " + std::to_string(initial.rows()) +
+                       " rows for " + std::to_string(mesh.tet_count()) + " tets");
+  }
+  if (resistance.size() != mesh.tet_count()) {
+    throw InvalidInput("fracture simulation: " + std::to_string(resistance.size()) + " resistances for " +
+                       std::to_string(mesh.tet_count()) + " tets");
+  }
+  for (int t = 0; t < mesh.tet_count(); ++t) {
+    if (!initial.row(t).allFinite()) throw InvalidInput("fracture simulation: the initial stress of " + mesh.tet_label(t) + " is not finite");
+    const double r = resistance(t);
+    if (!(r > 0.0) || !std::isfinite(r)) {
+      throw InvalidInput("fracture simulation: the resistance of " + mesh.tet_label(t) + " is " + format_number(r) +
+                         " Pa; it must be positive and finite");
+    }
+  }
+  if (options.max_cracks < 0) throw InvalidInput("fracture simulation: max_cracks is negative");
+  if (!(options.fixed_time_step >= 0.0) || !std::isfinite(options.fixed_time_step)) {
+    throw InvalidInput("fracture simulation: fixed_time_step " + format_number(options.fixed_time_step) +
+                       " must be a finite number ≥ 0");
+  }
+}
+
+}  // namespace
+
+double relaxation_kernel(double distance, double radius) {
+  if (!(radius > 0.0) || !(std::abs(distance) < radius)) return 0.0;
+  const double q = 1.0 - (distance * distance) / (radius * radius);
+  return q * q * q;
+}
+
+double critical_energy_release_rate(const FractureParams& params) {
+  return params.fracture_toughness * params.fracture_toughness / params.youngs_modulus;
+}
+
+double flaw_size(const FractureParams& params) {
+  const double k = params.fracture_toughness / params.resistance_mean;
+  return k * k / kPi;
+}
+
+FractureResult simulate_fracture(const FractureBody& body, const FractureParams& params, const StressField& initial_stress,
+                                 const Eigen::VectorXd& resistance, std::uint64_t seed,
+                                 const SimulationOptions& options) {
+  check_inputs(body, params, initial_stress, resistance, options);
+  Simulation simulation(body, params, initial_stress, resistance, seed, options);
+  return simulation.run();
+}
+
+}  // namespace fissure
