@@ -154,6 +154,17 @@ std::vector<std::string> FractureParams::problems(bool use_flags) const {
 
 void FractureParams::validate() const { throw_if_problems("fracture parameters", problems()); }
 
+const std::array<FitPrior, 5>& table3_priors() {
+  static const std::array<FitPrior, 5> priors{{
+      {"stress_rate", 0.0, 0.33, PriorReference::ResistanceMean},
+      {"relax_radius", 0.0, 1.0, PriorReference::FragmentScale},
+      {"relax_rate", 0.0, 0.33, PriorReference::ResistanceMean},
+      {"resistance_stddev", 0.0, 1.0, PriorReference::ResistanceMean},
+      {"load_factor", 0.0, 30.0, PriorReference::None},
+  }};
+  return priors;
+}
+
 const char* to_string(RelaxationChoice choice) {
   switch (choice) {
     case RelaxationChoice::Directional: return "directional";

@@ -72,17 +72,38 @@ TEST(FractureParameterTable, AccessorsReachEveryFieldOnce) {
 TEST(FractureParameterTable, RangesHoldTheTable3Priors) {
   const auto row = [](const char* name) { return table()[static_cast<std::size_t>(find_fracture_parameter(name))]; };
   const ParameterInfo rcm = row("resistance_mean");
-  for (double r : {rcm.min, rcm.max}) {
-    EXPECT_EQ(parameter_problem(row("stress_rate"), 0.33 * r, "stress_rate"), "");
-    EXPECT_EQ(parameter_problem(row("relax_rate"), 0.33 * r, "relax_rate"), "");
-    EXPECT_EQ(parameter_problem(row("resistance_stddev"), 1.0 * r, "resistance_stddev"), "");
-    EXPECT_EQ(parameter_problem(row("stress_rate"), 0.0, "stress_rate"), "");
-    EXPECT_EQ(parameter_problem(row("resistance_stddev"), 0.0, "resistance_stddev"), "");
+  const auto& priors = table3_priors();
+  const char* const paper_order[] = {"stress_rate", "relax_radius", "relax_rate", "resistance_stddev", "load_factor"};
+  for (std::size_t k = 0; k < priors.size(); ++k) {
+    const FitPrior& prior = priors[k];
+    SCOPED_TRACE(prior.name);
+    EXPECT_STREQ(prior.name, paper_order[k]);
+    ASSERT_GE(find_fracture_parameter(prior.name), 0);
+    const ParameterInfo info = row(prior.name);
+    EXPECT_EQ(prior.min_fraction, 0.0);  // every Table 3 range starts at 0 %
+    switch (prior.reference) {
+      case PriorReference::ResistanceMean:
+        for (double r : {rcm.min, rcm.default_value, rcm.max}) {
+          EXPECT_EQ(parameter_problem(info, prior.min_fraction * r, prior.name), "");
+          EXPECT_EQ(parameter_problem(info, prior.max_fraction * r, prior.name), "");
+        }
+        break;
+      case PriorReference::FragmentScale:
+        // r_relax > 0: the fit draws from (0, 1] × √(fragment area); any body Fissure meshes
+        // (≤ 100 m) has fragments smaller than itself.
+        EXPECT_TRUE(info.min_exclusive);
+        EXPECT_EQ(info.min, 0.0);
+        EXPECT_EQ(prior.max_fraction, 1.0);
+        break;
+      case PriorReference::None:
+        EXPECT_EQ(info.min, prior.min_fraction);
+        EXPECT_EQ(info.max, prior.max_fraction);  // 3000 % of the body's weight
+        break;
+    }
   }
-  EXPECT_EQ(row("load_factor").min, 0.0);
-  EXPECT_EQ(row("load_factor").max, 30.0);  // 3000 % of the body mass
-  EXPECT_TRUE(row("relax_radius").min_exclusive);
-  EXPECT_EQ(row("relax_radius").min, 0.0);
+  EXPECT_EQ(priors[0].max_fraction, 0.33);
+  EXPECT_EQ(priors[2].max_fraction, 0.33);
+  EXPECT_EQ(priors[3].max_fraction, 1.0);
   EXPECT_EQ(row("age").min, 0.0);
   for (int i = 1; i <= 4; ++i) {
     EXPECT_EQ(row(("noise_amplitude_" + std::to_string(i)).c_str()).min, 0.0);

@@ -85,6 +85,28 @@ int find_fracture_parameter(std::string_view name);
 double& parameter_value(FractureParams& params, std::size_t row);
 double parameter_value(const FractureParams& params, std::size_t row);
 
+/// What a Table 3 prior is a fraction of.
+enum class PriorReference {
+  ResistanceMean,  ///< R_cm of the material
+  FragmentScale,   ///< √(mean fragment area) on the body's visible face (paper-gaps §2)
+  None,            ///< the parameter itself (l is already a multiple of the body's weight)
+};
+
+/// One of the fit's uniform priors (paper Table 3): [min_fraction, max_fraction] × reference.
+struct FitPrior {
+  const char* name;  ///< the parameter's row name in fracture_parameter_table()
+  double min_fraction;
+  double max_fraction;
+  PriorReference reference;
+};
+
+/// Table 3 in the order of the paper's vector p = (dσ_e, r_relax, v_relax, R_cvar, l):
+/// 0–33 % of R_cm, 0–100 % of √(fragment area), 0–33 % of R_cm, 0–100 % of R_cm, 0–3000 % of
+/// the body's weight. The parameter table's absolute ranges hold these for every R_cm in range
+/// (a test checks it); turning them into absolute bounds needs R_cm and the body, so it is the
+/// fit's.
+const std::array<FitPrior, 5>& table3_priors();
+
 /// "directional", "isotropic", "from-exemplar": the JSON value and the --relaxation argument.
 const char* to_string(RelaxationChoice choice);
 /// The inverse of to_string (exact, lower case); nullopt for anything else.
