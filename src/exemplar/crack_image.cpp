@@ -177,6 +177,14 @@ GreyImage load_grey_image(const fs::path& path, std::int64_t max_pixels) {
   return image;
 }
 
+void write_grey_png(const fs::path& path, const GreyImage& image) {
+  const std::string name = path.string();
+  const std::vector<std::string> problems = image.problems();
+  if (!problems.empty()) throw InvalidInput(name + ": cannot write the image: it " + problems.front());
+  if (image.width < 1 || image.height < 1) throw InvalidInput(name + ": cannot write an empty image");
+  write_file_atomically(path, detail::encode_png_grey(image.pixels, image.width, image.height, name));
+}
+
 CrackMask crack_mask_from_grey(const GreyImage& image, const CrackImageOptions& options, const std::string& name) {
   options.validate();
   throw_if_problems(name + ": image", image.problems());

@@ -43,5 +43,7 @@ DecodedImage decode_bmp(std::string_view bytes, const std::string& name, std::in
 
 /// An 8-bit RGB PNG of `rgb` (row-major, 3 bytes a pixel). Throws IoError naming `name`.
 std::string encode_png_rgb(const std::vector<std::uint8_t>& rgb, int width, int height, const std::string& name);
+/// An 8-bit greyscale PNG of `grey` (row-major, 1 byte a pixel). Throws IoError naming `name`.
+std::string encode_png_grey(const std::vector<std::uint8_t>& grey, int width, int height, const std::string& name);
 
 }  // namespace fissure::detail

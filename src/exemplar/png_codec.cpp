@@ -111,7 +111,8 @@ Status decode_into(PngContext& context, DecodedImage& image, std::int64_t max_pi
   return Status::Ok;
 }
 
-Status encode_into(PngContext& context, const std::vector<std::uint8_t>& rgb, int width, int height) {
+// `channels` 1 (grey) or 3 (RGB), 8 bits a sample.
+Status encode_into(PngContext& context, const std::vector<std::uint8_t>& samples, int width, int height, int channels) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, on_error, on_warning);
   if (!png) {
     context.error = "out of memory";
@@ -124,11 +125,12 @@ Status encode_into(PngContext& context, const std::vector<std::uint8_t>& rgb, in
     return Status::Failed;
   }
   png_set_write_fn(png, &context, on_write, on_flush);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
+               channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   for (int y = 0; y < height; ++y) {
-    png_write_row(png, rgb.data() + static_cast<std::size_t>(y) * width * 3);
+    png_write_row(png, samples.data() + static_cast<std::size_t>(y) * width * channels);
   }
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
@@ -151,14 +153,28 @@ DecodedImage decode_png(std::string_view bytes, const std::string& name, std::in
   return image;
 }
 
-std::string encode_png_rgb(const std::vector<std::uint8_t>& rgb, int width, int height, const std::string& name) {
-  if (width <= 0 || height <= 0 || rgb.size() != static_cast<std::size_t>(width) * height * 3) {
+namespace {
+
+std::string encode_png(const std::vector<std::uint8_t>& samples, int width, int height, int channels, const std::string& name) {
+  if (width <= 0 || height <= 0 || samples.size() != static_cast<std::size_t>(width) * height * channels) {
     throw IoError(name + ": cannot encode a " + std::to_string(width) + " x " + std::to_string(height) + " PNG from " +
-                  std::to_string(rgb.size()) + " bytes");
+                  std::to_string(samples.size()) + " bytes");
   }
   PngContext context;
-  if (encode_into(context, rgb, width, height) != Status::Ok) throw IoError(name + ": cannot encode the PNG image: " + context.error);
+  if (encode_into(context, samples, width, height, channels) != Status::Ok) {
+    throw IoError(name + ": cannot encode the PNG image: " + context.error);
+  }
   return std::move(context.output);
+}
+
+}  // namespace
+
+std::string encode_png_rgb(const std::vector<std::uint8_t>& rgb, int width, int height, const std::string& name) {
+  return encode_png(rgb, width, height, 3, name);
+}
+
+std::string encode_png_grey(const std::vector<std::uint8_t>& grey, int width, int height, const std::string& name) {
+  return encode_png(grey, width, height, 1, name);
 }
 
 }  // namespace fissure::detail

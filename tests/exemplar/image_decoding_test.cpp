@@ -130,6 +130,29 @@ TEST(ImageDecoding, AlphaOnlyTracingIsRead) {
   EXPECT_EQ(a.substr(a.find("\"total_area\"")), c.substr(c.find("\"total_area\"")));
 }
 
+// write_grey_png (a simulation's pattern drawing): OpenCV's decoder, independent of ours, and
+// load_grey_image read back every pixel; an inconsistent or empty image is refused, and a failed
+// write leaves no file.
+TEST(ImageDecoding, GreyPngWrittenIsReadBackExactly) {
+  const fs::path dir = test::fresh_temp_dir("exemplar-grey-png");
+  GreyImage image = test::to_grey_image(test::closed_grid_drawing(203, 4, 40, 3));  // odd width: no row padding hides
+  for (std::size_t i = 0; i < image.pixels.size(); i += 7) image.pixels[i] = static_cast<std::uint8_t>(i % 251);
+  write_grey_png(dir / "grey.png", image);
+  const cv::Mat decoded = cv::imread((dir / "grey.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(decoded.type(), CV_8UC1);
+  ASSERT_EQ(decoded.cols, image.width);
+  ASSERT_EQ(decoded.rows, image.height);
+  EXPECT_TRUE(std::equal(image.pixels.begin(), image.pixels.end(), decoded.datastart));
+  EXPECT_EQ(load_grey_image(dir / "grey.png", 1 << 20).pixels, image.pixels);
+  GreyImage wrong = image;
+  wrong.pixels.pop_back();
+  EXPECT_THROW(write_grey_png(dir / "wrong.png", wrong), InvalidInput);
+  EXPECT_THROW(write_grey_png(dir / "empty.png", GreyImage{}), InvalidInput);
+  EXPECT_THROW(write_grey_png(dir / "missing" / "grey.png", image), IoError);
+  EXPECT_FALSE(fs::exists(dir / "wrong.png"));
+  EXPECT_FALSE(fs::exists(dir / "empty.png"));
+}
+
 // Every format and layout decodes to the same pixels as the PNG: grey and colour, palette BMP,
 // TIFF (LZW by OpenCV), 16-bit PNG, top-down BMP.
 TEST(ImageDecoding, FormatsAgree) {

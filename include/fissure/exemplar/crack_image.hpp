@@ -76,6 +76,11 @@ std::pair<int, int> image_size_from_header(const std::filesystem::path& path);
 /// TIFF). Safe to call from several threads.
 GreyImage load_grey_image(const std::filesystem::path& path, std::int64_t max_pixels);
 
+/// Writes `image` as an 8-bit greyscale PNG (libpng), atomically (base/atomic_file.hpp): what
+/// load_grey_image reads back pixel for pixel. Throws InvalidInput when the image is
+/// inconsistent or empty, IoError naming the file when it cannot be written.
+void write_grey_png(const std::filesystem::path& path, const GreyImage& image);
+
 /// Loads and binarises a tracing (load_grey_image, then crack_mask_from_grey). Throws IoError
 /// naming the file when it is missing, empty, corrupt or undecodable, InvalidInput when it is too
 /// small, larger than `max_pixels`, blank (no crack), all crack, when the ROI mask is missing or

@@ -1,0 +1,513 @@
+#include "fissure/fracture/visible_pattern.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <unordered_map>
+
+namespace fissure {
+namespace {
+
+// Pieces thinner than this fraction of a triangle's value range are not cut off: a vertex whose
+// crack value is within it of zero lies on the crack. 1e-12 relative is far above the round-off of
+// the blends (≈1e-16) and far below any geometric scale (a crack 1e-12 of an element from a
+// vertex), so no sliver piece of round-off size can become a fragment of its own.
+constexpr double kOnLine = 1e-12;
+// Two pieces across a shared edge touch when their footprints on it overlap by more than this
+// fraction of the edge. Both footprints end at the same crack points, computed from the same node
+// values (≈1e-16 apart); 1e-9 merges nothing real (two cracks 1e-9 of an edge apart).
+constexpr double kOverlap = 1e-9;
+
+using Bary = Eigen::Vector3d;  // barycentric coordinates on a visible triangle
+
+std::uint64_t edge_key(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b)), hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+// Where crack `crack` crosses mesh edge `edge`: the key of a shared trace point.
+struct EdgeCrack {
+  std::uint64_t edge;
+  int crack;
+  bool operator==(const EdgeCrack&) const = default;
+};
+struct EdgeCrackHash {
+  std::size_t operator()(const EdgeCrack& k) const {
+    return std::hash<std::uint64_t>{}(k.edge * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(k.crack));
+  }
+};
+
+// A crack's trace on one visible triangle (before junction splits).
+struct FaceSegment {
+  int crack = -1;
+  std::array<int, 2> point{};           // indices into the point table
+  std::array<Bary, 2> bary;             // the end points on the triangle
+  Eigen::Vector3d line = Eigen::Vector3d::Zero();  // S_k at the triangle's nodes
+  bool clipped = false;                 // restricted to clip ≥ 0 (a T-junction's arrival side)
+  int clipped_by = -1;
+  Eigen::Vector3d clip = Eigen::Vector3d::Zero();  // side · S_j at the triangle's nodes
+  bool ends_on_clip = false;            // point[1] is where it stops on crack clipped_by
+  std::vector<std::pair<double, int>> splits;  // (parameter along point[0] → point[1], point)
+};
+
+struct Point {
+  Eigen::Vector2d position;
+  bool on_border = false;
+};
+
+struct Piece {
+  std::vector<Bary> vertices;
+};
+
+class UnionFind {
+public:
+  explicit UnionFind(std::size_t n) : m_parent(n) { std::iota(m_parent.begin(), m_parent.end(), 0); }
+  int find(int x) {
+    while (m_parent[static_cast<std::size_t>(x)] != x) {
+      m_parent[static_cast<std::size_t>(x)] = m_parent[static_cast<std::size_t>(m_parent[static_cast<std::size_t>(x)])];
+      x = m_parent[static_cast<std::size_t>(x)];
+    }
+    return x;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) m_parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);  // lowest index is the root
+  }
+
+private:
+  std::vector<int> m_parent;
+};
+
+// Splits a convex piece by the line where `values` (at the triangle's nodes) vanish. Vertices within
+// `tolerance` of the line belong to both sides. Returns false (and leaves the outputs empty) when
+// the line does not pass through the piece's interior.
+bool split_piece(const Piece& piece, const Eigen::Vector3d& values, double tolerance, Piece& positive, Piece& negative) {
+  const std::size_t n = piece.vertices.size();
+  std::vector<double> v(n);
+  bool any_positive = false, any_negative = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    v[i] = piece.vertices[i].dot(values);
+    if (std::abs(v[i]) <= tolerance) v[i] = 0.0;
+    any_positive |= v[i] > 0.0;
+    any_negative |= v[i] < 0.0;
+  }
+  if (!any_positive || !any_negative) return false;
+  positive.vertices.clear();
+  negative.vertices.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    if (v[i] >= 0.0) positive.vertices.push_back(piece.vertices[i]);
+    if (v[i] <= 0.0) negative.vertices.push_back(piece.vertices[i]);
+    if ((v[i] > 0.0 && v[j] < 0.0) || (v[i] < 0.0 && v[j] > 0.0)) {
+      const double s = v[i] / (v[i] - v[j]);
+      // A coordinate that is exactly 0 at both ends stays exactly 0: the point stays on that edge.
+      const Bary p = piece.vertices[i] + s * (piece.vertices[j] - piece.vertices[i]);
+      positive.vertices.push_back(p);
+      negative.vertices.push_back(p);
+    }
+  }
+  return true;
+}
+
+std::string vector_text(const Eigen::Vector3d& v) {
+  return "(" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) + ")";
+}
+
+}  // namespace
+
+std::vector<std::string> VisiblePatternOptions::problems() const {
+  std::vector<std::string> out;
+  if (!(max_angle_deg >= 0.0 && max_angle_deg < 90.0)) out.push_back("max_angle_deg " + format_number(max_angle_deg) + " is outside [0, 90)");
+  if (reference_long_side_px < 8) {
+    out.push_back("reference_long_side_px " + std::to_string(reference_long_side_px) + " is below 8");
+  }
+  if (!(std::isfinite(line_width_px) && line_width_px > 0.0)) {
+    out.push_back("line_width_px " + format_number(line_width_px) + " is not positive and finite");
+  }
+  return out;
+}
+
+void VisiblePatternOptions::validate() const { throw_if_problems("visible pattern options", problems()); }
+
+PatternProjection pattern_projection(const Eigen::Vector3d& up) {
+  PatternProjection p;
+  p.up = up;
+  int axis = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(up[i]) < std::abs(up[axis])) axis = i;
+  }
+  const Eigen::Vector3d a = Eigen::Vector3d::Unit(axis);
+  p.axis_u = (a - a.dot(up) * up).normalized();
+  p.axis_v = up.cross(p.axis_u);
+  return p;
+}
+
+VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int crack_count,
+                                       const Eigen::Vector3d& up_in, const VisiblePatternOptions& options) {
+  options.validate();
+  const std::string name = mesh.source_name().empty() ? std::string("mesh") : mesh.source_name();
+  if (!up_in.allFinite() || !(up_in.norm() > 0.0)) {
+    throw InvalidInput(name + ": the view direction " + vector_text(up_in) + " is not a finite non-zero vector");
+  }
+  if (crack_count < 0 || static_cast<std::size_t>(crack_count) > cracks.size()) {
+    throw InvalidInput(name + ": crack count " + std::to_string(crack_count) + " is outside [0, " +
+                       std::to_string(cracks.size()) + "]");
+  }
+  VisiblePattern result;
+  result.projection = pattern_projection(up_in.normalized());
+  const PatternProjection& proj = result.projection;
+
+  // Visible triangles: outward normal within max_angle_deg of up.
+  const double cos_max = std::cos(options.max_angle_deg * std::numbers::pi / 180.0);
+  const std::vector<BoundaryFace>& boundary = mesh.boundary_faces();
+  std::vector<int> visible;
+  for (std::size_t f = 0; f < boundary.size(); ++f) {
+    if (boundary[f].normal.dot(proj.up) >= cos_max) visible.push_back(static_cast<int>(f));
+  }
+  result.visible_triangles = static_cast<int>(visible.size());
+  if (visible.empty()) {
+    result.empty_reason = name + ": no boundary face has its outward normal within " +
+                          format_number(options.max_angle_deg) + " degrees of " + vector_text(proj.up) +
+                          ": the visible pattern is empty";
+    return result;
+  }
+  result.has_visible_face = true;
+
+  // The cuts of the tets that own a visible triangle, per tet (each cut's values checked).
+  std::vector<int> slot_of_tet(static_cast<std::size_t>(mesh.tet_count()), -1);
+  int slots = 0;
+  for (const int f : visible) {
+    int& slot = slot_of_tet[static_cast<std::size_t>(boundary[static_cast<std::size_t>(f)].tet)];
+    if (slot < 0) slot = slots++;
+  }
+  std::vector<std::vector<std::pair<int, const CrackCut*>>> cuts_of_slot(static_cast<std::size_t>(slots));
+  for (int k = 0; k < crack_count; ++k) {
+    for (const CrackCut& cut : cracks[static_cast<std::size_t>(k)].cuts) {
+      if (cut.tet < 0 || cut.tet >= mesh.tet_count()) {
+        throw InvalidInput(name + ": crack " + std::to_string(k) + " cuts tet index " + std::to_string(cut.tet) +
+                           ", outside the mesh's " + std::to_string(mesh.tet_count()) + " tets");
+      }
+      for (const double v : cut.node_values) {
+        if (!std::isfinite(v)) {
+          throw InvalidInput(name + ": crack " + std::to_string(k) + " has a non-finite value in " + mesh.tet_label(cut.tet));
+        }
+      }
+      const int slot = slot_of_tet[static_cast<std::size_t>(cut.tet)];
+      if (slot >= 0) cuts_of_slot[static_cast<std::size_t>(slot)].emplace_back(k, &cut);
+    }
+  }
+
+  // Edges of the visible region: how many visible triangles use each mesh edge (2 inside, 1 on the
+  // border of the region).
+  std::unordered_map<std::uint64_t, int> edge_use;
+  edge_use.reserve(visible.size() * 2);
+  for (const int f : visible) {
+    const auto& n = boundary[static_cast<std::size_t>(f)].nodes;
+    for (int i = 0; i < 3; ++i) ++edge_use[edge_key(n[static_cast<std::size_t>(i)], n[static_cast<std::size_t>((i + 1) % 3)])];
+  }
+
+  std::vector<Point> points;
+  std::unordered_map<EdgeCrack, int, EdgeCrackHash> edge_point;  // looked up, never iterated
+  struct Segment {
+    int a, b, crack;
+  };
+  std::vector<Segment> segments;
+  std::vector<Piece> pieces;
+  std::vector<double> piece_area;
+  std::vector<Eigen::Vector2d> piece_centroid;
+  struct Footprint {
+    int piece;
+    double t0, t1;
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::pair<int, Footprint>>> footprints;  // edge → (triangle, footprint)
+  std::vector<char> piece_on_border;
+  double total_area = 0.0;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
+  result.visible_triangle_corners.reserve(visible.size());
+
+  std::vector<FaceSegment> face_segments;
+  for (std::size_t vi = 0; vi < visible.size(); ++vi) {
+    const BoundaryFace& face = boundary[static_cast<std::size_t>(visible[vi])];
+    const auto tet_nodes = mesh.tets().row(face.tet);
+    std::array<int, 3> local{};
+    std::array<Eigen::Vector2d, 3> corner;
+    for (int i = 0; i < 3; ++i) {
+      const int node = face.nodes[static_cast<std::size_t>(i)];
+      for (int l = 0; l < 4; ++l) {
+        if (tet_nodes(l) == node) local[static_cast<std::size_t>(i)] = l;
+      }
+      corner[static_cast<std::size_t>(i)] = proj.project(mesh.nodes().row(node).transpose());
+      lo = lo.cwiseMin(corner[static_cast<std::size_t>(i)]);
+      hi = hi.cwiseMax(corner[static_cast<std::size_t>(i)]);
+    }
+    result.visible_triangle_corners.push_back(corner);
+    const double triangle_area = 0.5 * ((corner[1] - corner[0]).x() * (corner[2] - corner[0]).y() -
+                                        (corner[1] - corner[0]).y() * (corner[2] - corner[0]).x());
+    total_area += triangle_area;
+    auto position = [&](const Bary& b) { return Eigen::Vector2d(b[0] * corner[0] + b[1] * corner[1] + b[2] * corner[2]); };
+    auto values_of = [&](const CrackCut& cut) {
+      return Eigen::Vector3d(cut.node_values[static_cast<std::size_t>(local[0])], cut.node_values[static_cast<std::size_t>(local[1])],
+                             cut.node_values[static_cast<std::size_t>(local[2])]);
+    };
+    const auto& tet_cuts = cuts_of_slot[static_cast<std::size_t>(slot_of_tet[static_cast<std::size_t>(face.tet)])];
+
+    // Crack traces: the zero segment of each cut's values on this triangle, clipped for a T.
+    face_segments.clear();
+    for (const auto& [k, cut] : tet_cuts) {
+      FaceSegment s;
+      s.crack = k;
+      s.line = values_of(*cut);
+      int found = 0;
+      for (int i = 0; i < 3 && found < 2; ++i) {
+        const int a = i, b = (i + 1) % 3;
+        if ((s.line[a] > 0.0) == (s.line[b] > 0.0)) continue;
+        // The point is computed from the edge's lower-numbered node, so both triangles on the edge
+        // (and their tets' cuts, which hold the same node values) get the very same point.
+        const int node_a = face.nodes[static_cast<std::size_t>(a)], node_b = face.nodes[static_cast<std::size_t>(b)];
+        const bool a_low = node_a < node_b;
+        const int p = a_low ? a : b, q = a_low ? b : a;
+        const double t = s.line[p] / (s.line[p] - s.line[q]);
+        Bary bary = Bary::Zero();
+        bary[p] = 1.0 - t;
+        bary[q] = t;
+        const std::uint64_t key = edge_key(node_a, node_b);
+        const auto [it, inserted] = edge_point.try_emplace(EdgeCrack{key, k}, static_cast<int>(points.size()));
+        if (inserted) {
+          points.push_back({corner[static_cast<std::size_t>(p)] + t * (corner[static_cast<std::size_t>(q)] - corner[static_cast<std::size_t>(p)]),
+                            edge_use[key] == 1});
+        }
+        s.point[static_cast<std::size_t>(found)] = it->second;
+        s.bary[static_cast<std::size_t>(found)] = bary;
+        ++found;
+      }
+      if (found < 2) continue;
+      if (cut->clipped_by >= 0) {
+        const CrackCut* by = nullptr;
+        for (const auto& [j, other] : tet_cuts) {
+          if (j == cut->clipped_by) by = other;
+        }
+        if (!by) {
+          throw InvalidInput(name + ": crack " + std::to_string(k) + " is clipped by crack " + std::to_string(cut->clipped_by) +
+                             " in " + mesh.tet_label(face.tet) + ", which that crack does not cut");
+        }
+        s.clipped = true;
+        s.clipped_by = cut->clipped_by;
+        s.clip = (cut->clip_side >= 0 ? 1.0 : -1.0) * values_of(*by);
+        const double h0 = s.bary[0].dot(s.clip), h1 = s.bary[1].dot(s.clip);
+        const bool in0 = h0 >= 0.0, in1 = h1 >= 0.0;  // crack_polygon's rule: ≥ 0 is kept
+        if (!in0 && !in1) continue;
+        if (in0 != in1) {
+          if (!in0) {
+            std::swap(s.point[0], s.point[1]);
+            std::swap(s.bary[0], s.bary[1]);
+          }
+          const double hk = in0 ? h0 : h1, hd = in0 ? h1 : h0;
+          const double u = hk / (hk - hd);
+          s.bary[1] = s.bary[0] + u * (s.bary[1] - s.bary[0]);
+          s.point[1] = static_cast<int>(points.size());
+          points.push_back({position(s.bary[1]), false});
+          s.ends_on_clip = true;
+        }
+      }
+      face_segments.push_back(std::move(s));
+    }
+    // The crack value of `line` along a segment: opposite strict signs at its ends = it crosses.
+    auto crossing = [](const FaceSegment& s, const Eigen::Vector3d& line, double& param) {
+      const double g0 = s.bary[0].dot(line), g1 = s.bary[1].dot(line);
+      if (!((g0 > 0.0 && g1 < 0.0) || (g0 < 0.0 && g1 > 0.0))) return false;
+      param = g0 / (g0 - g1);
+      return true;
+    };
+    // T-junctions: a clipped segment ends on the clipping crack's segment, which is split there.
+    for (FaceSegment& s : face_segments) {
+      if (!s.ends_on_clip) continue;
+      for (FaceSegment& other : face_segments) {
+        double param = 0.0;
+        if (other.crack == s.clipped_by && crossing(other, s.line, param)) other.splits.emplace_back(param, s.point[1]);
+      }
+    }
+    // X-junctions: two segments crossing inside the triangle (not a T's own pair).
+    for (std::size_t i = 0; i < face_segments.size(); ++i) {
+      for (std::size_t j = i + 1; j < face_segments.size(); ++j) {
+        FaceSegment& a = face_segments[i];
+        FaceSegment& b = face_segments[j];
+        if (a.crack == b.crack || a.clipped_by == b.crack || b.clipped_by == a.crack) continue;
+        double pa = 0.0, pb = 0.0;
+        if (!crossing(a, b.line, pa) || !crossing(b, a.line, pb)) continue;
+        const int p = static_cast<int>(points.size());
+        points.push_back({position(a.bary[0] + pa * (a.bary[1] - a.bary[0])), false});
+        a.splits.emplace_back(pa, p);
+        b.splits.emplace_back(pb, p);
+      }
+    }
+    for (FaceSegment& s : face_segments) {
+      std::sort(s.splits.begin(), s.splits.end());
+      int from = s.point[0];
+      for (const auto& [param, p] : s.splits) {
+        segments.push_back({from, p, s.crack});
+        from = p;
+      }
+      segments.push_back({from, s.point[1], s.crack});
+    }
+
+    // Fragments: the triangle cut into convex pieces, cracks in order of opening so that a T's
+    // clipping crack has cut before the T's own segment, which then splits only the pieces on its
+    // arrival side. A piece straddling the clipping line (possible only where the clipping crack is
+    // itself clipped away in this tet) is left whole: the T ends inside it like a free end.
+    std::vector<Piece> face_pieces{Piece{{Bary::UnitX(), Bary::UnitY(), Bary::UnitZ()}}};
+    std::stable_sort(face_segments.begin(), face_segments.end(), [](const FaceSegment& a, const FaceSegment& b) { return a.crack < b.crack; });
+    for (const FaceSegment& s : face_segments) {
+      const double line_tolerance = kOnLine * s.line.cwiseAbs().maxCoeff();
+      const double clip_tolerance = kOnLine * s.clip.cwiseAbs().maxCoeff();
+      std::vector<Piece> next;
+      next.reserve(face_pieces.size() + 1);
+      for (const Piece& piece : face_pieces) {
+        bool split_here = true;
+        if (s.clipped) {
+          for (const Bary& v : piece.vertices) split_here &= v.dot(s.clip) >= -clip_tolerance;
+        }
+        Piece positive, negative;
+        if (split_here && split_piece(piece, s.line, line_tolerance, positive, negative)) {
+          next.push_back(std::move(positive));
+          next.push_back(std::move(negative));
+        } else {
+          next.push_back(piece);
+        }
+      }
+      face_pieces = std::move(next);
+    }
+    for (Piece& piece : face_pieces) {
+      // Area and centroid (fan from the first vertex; pieces are convex).
+      double area = 0.0;
+      Eigen::Vector2d moment = Eigen::Vector2d::Zero();
+      const Eigen::Vector2d p0 = position(piece.vertices[0]);
+      for (std::size_t i = 1; i + 1 < piece.vertices.size(); ++i) {
+        const Eigen::Vector2d p1 = position(piece.vertices[i]), p2 = position(piece.vertices[i + 1]);
+        const double a = 0.5 * ((p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x());
+        area += a;
+        moment += a * (p0 + p1 + p2) / 3.0;
+      }
+      if (!(area > 0.0)) continue;
+      const int id = static_cast<int>(pieces.size());
+      // Footprints on the triangle's edges: a piece edge lies on the edge opposite corner i when
+      // both its ends have coordinate i exactly 0 (splitting keeps such zeros exact).
+      for (std::size_t e = 0; e < piece.vertices.size(); ++e) {
+        const Bary& u = piece.vertices[e];
+        const Bary& w = piece.vertices[(e + 1) % piece.vertices.size()];
+        for (int i = 0; i < 3; ++i) {
+          if (u[i] != 0.0 || w[i] != 0.0) continue;
+          const int a = (i + 1) % 3, b = (i + 2) % 3;
+          const int node_a = face.nodes[static_cast<std::size_t>(a)], node_b = face.nodes[static_cast<std::size_t>(b)];
+          const int high = node_a < node_b ? b : a;  // parameter measured from the lower-numbered node
+          const double t0 = std::min(u[high], w[high]), t1 = std::max(u[high], w[high]);
+          if (t1 - t0 > kOverlap) footprints[edge_key(node_a, node_b)].push_back({static_cast<int>(vi), Footprint{id, t0, t1}});
+        }
+      }
+      pieces.push_back(std::move(piece));
+      piece_area.push_back(area);
+      piece_centroid.push_back(moment / area);
+      piece_on_border.push_back(0);
+    }
+  }
+
+  // Pieces across a shared edge whose footprints overlap are one fragment; a footprint on an edge
+  // of the region makes its fragment touch the border. Edges are visited in key order.
+  UnionFind sets(pieces.size());
+  std::vector<std::uint64_t> edge_keys;
+  edge_keys.reserve(footprints.size());
+  for (const auto& entry : footprints) edge_keys.push_back(entry.first);
+  std::sort(edge_keys.begin(), edge_keys.end());
+  for (const std::uint64_t key : edge_keys) {
+    const auto& list = footprints[key];
+    if (edge_use[key] == 1) {
+      for (const auto& [triangle, fp] : list) piece_on_border[static_cast<std::size_t>(fp.piece)] = 1;
+      continue;
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      for (std::size_t j = i + 1; j < list.size(); ++j) {
+        if (list[i].first == list[j].first) continue;
+        const Footprint& a = list[i].second;
+        const Footprint& b = list[j].second;
+        if (std::min(a.t1, b.t1) - std::max(a.t0, b.t0) > kOverlap) sets.unite(a.piece, b.piece);
+      }
+    }
+  }
+
+  // The graph, in metres. The frame is the region's bounding box.
+  const double extent = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  const double metres_per_pixel = extent / options.reference_long_side_px;
+  PlanarCrackGraphBuilder builder(lo, hi, total_area, name + " (visible pattern)");
+  builder.set_crack_width(options.line_width_px * metres_per_pixel);
+  result.stats_options.probe_min = PatternStatsOptions{}.probe_min * metres_per_pixel;
+
+  std::vector<int> fragment_of_root(pieces.size(), -1);
+  std::vector<Fragment> fragments;
+  std::vector<Eigen::Vector2d> moments;
+  for (std::size_t p = 0; p < pieces.size(); ++p) {
+    const auto root = static_cast<std::size_t>(sets.find(static_cast<int>(p)));
+    if (fragment_of_root[root] < 0) {
+      fragment_of_root[root] = static_cast<int>(fragments.size());
+      fragments.emplace_back();
+      moments.push_back(Eigen::Vector2d::Zero());
+    }
+    const auto f = static_cast<std::size_t>(fragment_of_root[root]);
+    fragments[f].area += piece_area[p];
+    moments[f] += piece_area[p] * piece_centroid[p];
+    fragments[f].touches_border = fragments[f].touches_border || piece_on_border[p];
+  }
+  for (std::size_t f = 0; f < fragments.size(); ++f) {
+    fragments[f].centroid = moments[f] / fragments[f].area;
+    builder.add_fragment(std::move(fragments[f]));
+  }
+
+  // Polylines: chains of segments through points of degree 2, from node to node (degree ≠ 2);
+  // what is left are closed loops meeting nothing.
+  std::vector<std::vector<int>> at(points.size());
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    at[static_cast<std::size_t>(segments[s].a)].push_back(static_cast<int>(s));
+    at[static_cast<std::size_t>(segments[s].b)].push_back(static_cast<int>(s));
+  }
+  std::vector<int> node_of(points.size(), -1);
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    const std::size_t degree = at[p].size();
+    if (degree != 0 && degree != 2) node_of[p] = builder.add_node(points[p].position, degree == 1 && points[p].on_border);
+  }
+  std::vector<char> used(segments.size(), 0);
+  auto walk = [&](int start, int first) {
+    std::vector<Eigen::Vector2d> line{points[static_cast<std::size_t>(start)].position};
+    int current = start, segment = first;
+    while (true) {
+      used[static_cast<std::size_t>(segment)] = 1;
+      const Segment& s = segments[static_cast<std::size_t>(segment)];
+      current = s.a == current ? s.b : s.a;
+      line.push_back(points[static_cast<std::size_t>(current)].position);
+      if (node_of[static_cast<std::size_t>(current)] >= 0 || current == start) break;
+      const auto& next = at[static_cast<std::size_t>(current)];
+      segment = next[0] == segment ? next[1] : next[0];
+      if (used[static_cast<std::size_t>(segment)]) break;
+    }
+    const int crack = segments[static_cast<std::size_t>(first)].crack;
+    builder.add_crack(std::move(line), node_of[static_cast<std::size_t>(start)], node_of[static_cast<std::size_t>(current)]);
+    result.source_crack.push_back(crack);
+  };
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (node_of[p] < 0) continue;
+    for (const int s : at[p]) {
+      if (!used[static_cast<std::size_t>(s)]) walk(static_cast<int>(p), s);
+    }
+  }
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    if (!used[s]) walk(segments[s].a, static_cast<int>(s));
+  }
+  result.graph = std::move(builder).build();
+  return result;
+}
+
+}  // namespace fissure
