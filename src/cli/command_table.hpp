@@ -15,7 +15,7 @@ struct CommandInfo {
   std::string_view summary;
 };
 
-inline constexpr std::array<CommandInfo, 6> kCommands{{
+inline constexpr std::array<CommandInfo, 7> kCommands{{
     {"mesh", "Tetrahedralise a closed surface (or a procedural tile) into a gmsh .msh file"},
     {"solve", "Static stress of a tet mesh under loads: writes displacement, stress and max principal stress as "
               "gmsh views"},
@@ -23,6 +23,8 @@ inline constexpr std::array<CommandInfo, 6> kCommands{{
     {"analyze", "Crack statistics of a traced crack image (paper S1-S3): fragments, cracks, junctions and junction "
                 "angles"},
     {"compare", "Statistical distance between two crack patterns (paper Eq. 5)"},
+    {"fracture", "Fracture a body (paper S5): cracks over time, fragment labels, and the visible pattern measured "
+                 "like an exemplar"},
     {"version", "Print the Fissure version"},
 }};
 

@@ -28,5 +28,6 @@ void register_solve(CLI::App& app, Action& action);
 void register_modes(CLI::App& app, Action& action);
 void register_analyze(CLI::App& app, Action& action);
 void register_compare(CLI::App& app, Action& action);
+void register_fracture(CLI::App& app, Action& action);
 
 }  // namespace fissure::cli

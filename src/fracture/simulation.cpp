@@ -69,6 +69,8 @@ public:
     m_node_stamp.assign(static_cast<std::size_t>(m_mesh.node_count()), -1);
     m_flood_stamp.assign(n, -1);
     m_snap = 1e-6 * body.mean_edge_length();
+    m_near_crack.assign(n, kInf);
+    m_join_distance = kJoinEdges * body.mean_edge_length();
     m_gc = critical_energy_release_rate(params);
     m_flaw = flaw_size(params);
     m_directional = resolve_directional();
@@ -321,7 +323,13 @@ private:
         }
         const auto polygon = crack_polygon(tet_nodes(u), cut);
         const auto [gain, a_e] = release(u, polygon);
-        if (gain < 0.0 && budget + gain < 0.0) continue;  // arrest here; another face may still reach u
+        // Arrest here (another face may still reach u) — unless the tip is closing in on an
+        // earlier crack a few element sizes away: its free surface concentrates stress at the
+        // approaching tip, and a crack that stops just short of another reads as a gap in the
+        // drawing, not a T. Running alongside a crack (no closer) does not count.
+        const double near_u = m_near_crack[static_cast<std::size_t>(u)];
+        const bool closing_in = near_u < m_join_distance && near_u < m_near_crack[static_cast<std::size_t>(tet)];
+        if (gain < 0.0 && budget + gain < 0.0 && !closing_in) continue;
         budget += gain;
         area += a_e;
         m_flood_stamp[static_cast<std::size_t>(u)] = k;
@@ -354,6 +362,7 @@ private:
     }
     m_cracks.push_back(std::move(crack));
     relax(polygons, normals, t);
+    record_crack_distances(polygons, normals);
   }
 
   const CrackCut& cut_of(int crack, int tet) const {
@@ -431,6 +440,27 @@ private:
     }
   }
 
+  // The distance from every tet within the join distance of the new crack to it, kept as the
+  // minimum over all cracks so far (for the join rule of the flood).
+  void record_crack_distances(const std::vector<std::vector<Eigen::Vector3d>>& polygons,
+                              const std::vector<Eigen::Vector3d>& normals) {
+    const auto& cuts = m_cracks.back().cuts;
+    std::vector<std::pair<int, int>> seeds;
+    seeds.reserve(cuts.size());
+    for (std::size_t i = 0; i < cuts.size(); ++i) seeds.emplace_back(cuts[i].tet, static_cast<int>(i));
+    m_propagation.run(
+        seeds,
+        [&](int tet, int i) {
+          return detail::polygon_distance(m_mesh.centroid(tet), polygons[static_cast<std::size_t>(i)],
+                                          normals[static_cast<std::size_t>(i)]);
+        },
+        m_join_distance);
+    for (int tet : m_propagation.reached()) {
+      double& d = m_near_crack[static_cast<std::size_t>(tet)];
+      d = std::min(d, m_propagation.distance_of(tet));
+    }
+  }
+
   const FractureBody& m_body;
   const TetMesh& m_mesh;
   const FractureParams& m_params;
@@ -445,6 +475,10 @@ private:
   std::vector<double> m_node_value;
   std::vector<int> m_node_stamp;
   std::vector<int> m_flood_stamp;
+  std::vector<double> m_near_crack;  // distance to the nearest earlier crack, within m_join_distance
+  // A tip this many mean edge lengths from an earlier crack runs on to it whatever its budget.
+  static constexpr double kJoinEdges = 3.0;
+  double m_join_distance = 0.0;
   std::vector<CrackSurface> m_cracks;
   double m_snap = 0.0, m_gc = 0.0, m_flaw = 0.0;
   bool m_directional = true;

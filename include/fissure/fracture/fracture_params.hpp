@@ -41,7 +41,7 @@ struct FractureParams {
   double fracture_toughness = 1.2e6;
 
   // Simulation (IN).
-  double age = 1.0;                   ///< duration of Algorithm 1, age units
+  double age = 10.0;                  ///< duration of Algorithm 1, age units
 
   // Fitted (OPT, Table 3).
   double stress_rate = 4.5e6;         ///< dσ_e, Pa per age unit (in-plane tension, see below)

@@ -1,0 +1,48 @@
+#pragma once
+/// How a body is held and struck for a fracture run, with defaults that work on any closed body
+/// (docs/architecture.md, "Fracture simulation"):
+///  - supports: rollers along `up` on the rim of the lowest face (the boundary faces facing down,
+///    within 45° of −up, at the lowest height, give or take 2 % of the body's height), plus the
+///    fewest in-plane constraints that stop rigid motion (one node fixed, one more held
+///    against rotation about up). A body resting on its rim bends under a load on top, which is
+///    what breaks a tile or a basin; clamping the whole face would carry the load in compression
+///    and break nothing. `free_body` instead uses inertia relief (nothing held);
+///  - load: one patch at the centre of the top face (the up-facing face nearest to the body's
+///    centre across up), pushing down with |f| = l · m_body · g, over a disc of radius
+///    `patch_radius` (default 5 % of the body's largest extent across up, at least 2 element
+///    sizes).
+#include "fissure/fem/load.hpp"
+#include "fissure/fem/supports.hpp"
+#include "fissure/fracture/fracture_params.hpp"
+#include "fissure/mesh/tet_mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+constexpr double kStandardGravity = 9.80665;  ///< m/s², the load factor l's g
+
+struct FractureScenario {
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  ///< unit; the visible face looks along it
+  bool free_body = false;
+  std::vector<SupportSpec> supports;  ///< empty and not free: the default rim rollers
+  std::vector<LoadSpec> loads;        ///< empty: the default patch, scaled by l
+  double patch_radius = 0.0;          ///< m; 0: the default
+};
+
+/// The default supports above, as fixed dofs (sorted). Throws InvalidInput when the body has no
+/// face looking down along −up within 45° (say --free or give --fix).
+std::vector<int> default_support_dofs(const TetMesh& mesh, const Eigen::Vector3d& up);
+
+/// The default load above for magnitude `force` (N), as a LoadSpec (a ball selection with up as
+/// its reference normal). Throws InvalidInput when no boundary face looks up within 45°.
+LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius = 0.0);
+
+/// Parses "+x", "-y", "z" (= "+z"), … as a unit axis. Throws InvalidInput naming the text.
+Eigen::Vector3d parse_up_axis(const std::string& text);
+
+}  // namespace fissure

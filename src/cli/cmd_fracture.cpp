@@ -1,0 +1,312 @@
+// fissure fracture INPUT [--material M] [parameter flags] [--fix SEL…] [--load SPEC…] [--up A]
+//   [--free] [--fragments N] [--seed S] [--tets N] [--pattern p.png] [--stats s.json] [--msh out.msh]
+
+#include "cli_common.hpp"
+#include "command_table.hpp"
+#include "commands.hpp"
+#include "interruption.hpp"
+#include "memory_estimate.hpp"
+#include "option_checks.hpp"
+#include "terminal_progress.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/base/memory.hpp"
+#include "fissure/base/number_text.hpp"
+#include "fissure/base/thread_count.hpp"
+#include "fissure/exemplar/stats_json.hpp"
+#include "fissure/fracture/fragment_target.hpp"
+#include "fissure/fracture/material_file.hpp"
+#include "fissure/fracture/pattern_image.hpp"
+#include "fissure/fracture/prepared_body.hpp"
+#include "fissure/fracture/resistance_field.hpp"
+#include "fissure/fracture/visible_pattern.hpp"
+#include "fissure/io/msh.hpp"
+#include "fissure/io/surface_import.hpp"
+#include "fissure/mesh/tetrahedralize.hpp"
+#include "fissure/mesh/tile.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+
+namespace fissure::cli {
+namespace {
+
+struct FractureArgs {
+  std::string input;
+  std::string material = kDefaultMaterialName;
+  std::map<std::size_t, double> overrides;  // table row → value given on the command line
+  std::string relaxation;
+  std::vector<std::string> fix;
+  std::vector<std::string> load;
+  std::string up;
+  std::string view;
+  bool free_body = false;
+  double fragments = 0;
+  std::uint64_t seed = 1;
+  double tets = 24000;
+  std::string pattern;
+  double pattern_size = 1024;
+  std::string stats;
+  std::string msh;
+  bool raw_stress = false;
+  bool quiet = false;
+  bool allow_large = false;
+};
+
+std::string lower_extension(const std::string& input) {
+  std::string ext = std::filesystem::path(input).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// The up axis of the input's own convention: glTF, FBX and COLLADA are +Y up, the rest
+// (tile:, .msh, STL, PLY, OFF, OBJ) +Z.
+Eigen::Vector3d default_up(const std::string& input) {
+  const std::string ext = is_tile_spec(input) ? std::string() : lower_extension(input);
+  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx" || ext == ".dae") return Eigen::Vector3d::UnitY();
+  return Eigen::Vector3d::UnitZ();
+}
+
+Eigen::Vector3d parse_direction(const std::string& text, const std::string& flag) {
+  if (text.find(',') == std::string::npos) {
+    try {
+      return parse_up_axis(text);
+    } catch (const InvalidInput&) {
+      throw InvalidInput(flag + " " + text + " is not an axis (+x, -y, …) nor a direction x,y,z");
+    }
+  }
+  const auto v = parse_number_list(text, flag, 3, "x,y,z");
+  const Eigen::Vector3d d(v[0], v[1], v[2]);
+  if (!(d.norm() > 0.0)) throw InvalidInput(flag + " " + text + " is the zero vector");
+  return d.normalized();
+}
+
+FractureParams params_from(const FractureArgs& args, std::string& material_name) {
+  const FractureMaterial material = load_material(find_material(args.material));
+  material_name = material.name;
+  FractureParams p = material.params;
+  for (const auto& [row, value] : args.overrides) parameter_value(p, row) = value;
+  if (!args.relaxation.empty()) {
+    const auto choice = parse_relaxation_choice(args.relaxation);
+    if (!choice) throw InvalidInput("--relaxation " + args.relaxation + " is not one of " + relaxation_choice_names());
+    p.relaxation = *choice;
+  }
+  const std::vector<std::string> problems = p.problems(true);
+  if (!problems.empty()) {
+    std::string text;
+    for (const std::string& s : problems) text += (text.empty() ? "" : "; ") + s;
+    throw InvalidInput(text);
+  }
+  return p;
+}
+
+std::shared_ptr<const TetMesh> mesh_from(const FractureArgs& args, TerminalProgress& progress) {
+  progress.stage("reading " + args.input);
+  if (!is_tile_spec(args.input) && lower_extension(args.input) == ".msh") {
+    return std::make_shared<const TetMesh>(read_msh(args.input));
+  }
+  SurfaceRepairReport repairs;
+  const SurfaceMesh surface = load_surface_input(args.input, repairs);
+  for (const std::string& action : repairs.actions) std::cerr << "fissure fracture: repaired " << args.input << ": " << action << '\n';
+  TetrahedralizeOptions options;
+  options.target_tets = static_cast<int>(std::lround(args.tets));
+  options.memory_limit_bytes = memory_limit(args.allow_large);
+  TetrahedralizeReport report;
+  auto mesh = std::make_shared<const TetMesh>(tetrahedralize(surface, options, &report, &progress, &interrupt_token()));
+  for (const std::string& warning : report.warnings) std::cerr << "fissure fracture: warning: " << warning << '\n';
+  return mesh;
+}
+
+// The first crack time of every tet, −1 for a tet no crack cuts (a gmsh view value).
+Eigen::VectorXd crack_onset(const TetMesh& mesh, const FractureResult& r) {
+  Eigen::VectorXd onset = Eigen::VectorXd::Constant(mesh.tet_count(), -1.0);
+  for (const CrackSurface& c : r.cracks) {
+    for (const CrackCut& cut : c.cuts) {
+      if (onset(cut.tet) < 0.0) onset(cut.tet) = c.time;
+    }
+  }
+  return onset;
+}
+
+int run_fracture(const FractureArgs& args) {
+  std::string material_name;
+  const FractureParams params = params_from(args, material_name);
+  for (const std::string* path : {&args.pattern, &args.stats}) {
+    if (!path->empty()) check_output_path(*path);
+  }
+  if (!args.msh.empty()) check_msh_output_path(args.msh);
+  if (args.pattern == "-" || args.msh == "-") throw InvalidInput("--pattern and --msh write files; only --stats may be -");
+  FractureScenario scenario;
+  scenario.up = args.up.empty() ? default_up(args.input) : parse_direction(args.up, "--up");
+  scenario.free_body = args.free_body;
+  for (const std::string& spec : args.fix) scenario.supports.push_back(parse_support(spec));
+  for (const std::string& spec : args.load) scenario.loads.push_back(parse_load(spec));
+  const Eigen::Vector3d view = args.view.empty() ? scenario.up : parse_direction(args.view, "--view");
+
+  TerminalProgress progress(args.quiet);
+  Stopwatch clock;
+  std::shared_ptr<const TetMesh> mesh;
+  std::unique_ptr<PreparedBody> prepared;
+  StressField initial;
+  Eigen::VectorXd resistance;
+  FragmentTargetResult target;
+  double preparation_s = 0.0, simulation_s = 0.0;
+  {
+    AbandonableWork work;
+    mesh = mesh_from(args, progress);
+    require_memory(static_solve_bytes(mesh->tet_count()), memory_limit(args.allow_large), "fracturing " + args.input);
+    progress.stage("preparing the body");
+    prepared = std::make_unique<PreparedBody>(mesh, params.elastic(), scenario, thread_count());
+    throw_if_interrupted();
+    initial = prepared->initial_stress(params, !args.raw_stress);
+    resistance = draw_resistance(static_cast<std::size_t>(mesh->tet_count()), params.resistance_mean,
+                                 params.resistance_stddev, args.seed, thread_count());
+    preparation_s = clock.milliseconds() / 1e3;
+    progress.stage("simulating");
+    SimulationOptions options;
+    options.progress = &progress;
+    options.cancel = &interrupt_token();
+    if (args.fragments > 0) {
+      target = simulate_to_fragment_count(prepared->fracture_body(), params, initial, resistance, args.seed,
+                                          static_cast<int>(std::lround(args.fragments)), options);
+    } else {
+      target.result = simulate_fracture(prepared->fracture_body(), params, initial, resistance, args.seed, options);
+      target.age = target.result.simulated_age;
+      target.reached = true;
+    }
+    simulation_s = clock.milliseconds() / 1e3 - preparation_s;
+  }
+  throw_if_interrupted();
+  const FractureResult& result = target.result;
+
+  progress.stage("measuring the visible pattern");
+  VisiblePatternOptions pattern_options;
+  pattern_options.reference_long_side_px = static_cast<int>(std::lround(args.pattern_size));
+  const VisiblePattern visible =
+      extract_visible_pattern(*mesh, result.cracks, static_cast<int>(result.cracks.size()), view, pattern_options);
+  PatternStats stats;
+  if (visible.has_visible_face) stats = compute_pattern_stats(visible.graph, visible.stats_options);
+
+  nlohmann::ordered_json fracture = {
+      {"material", material_name},
+      {"seed", args.seed},
+      {"age", target.age},
+      {"tets", mesh->tet_count()},
+      {"fragments", result.fragments.count},
+      {"cracks", result.cracks.size()},
+      {"partial_cracks", result.partial_cracks.size()},
+      {"crack_limit_reached", result.crack_limit_reached},
+      {"seconds", {{"preparation", preparation_s}, {"simulation", simulation_s}, {"fragment_meshing", 0.0}, {"export", 0.0}}}};
+  if (args.fragments > 0) fracture["fragments_requested"] = std::lround(args.fragments);
+
+  progress.stage("writing");
+  if (!args.stats.empty()) {
+    nlohmann::ordered_json out;
+    if (visible.has_visible_face) {
+      out = nlohmann::ordered_json::parse(pattern_stats_to_json(stats));
+    } else {
+      out["pattern"] = "empty";
+      out["reason"] = visible.empty_reason;
+    }
+    out["fracture"] = fracture;
+    const std::string text = out.dump(2) + "\n";
+    if (args.stats == "-") {
+      std::fwrite(text.data(), 1, text.size(), stdout);
+    } else {
+      write_file_atomically(args.stats, text);
+    }
+  }
+  if (!args.pattern.empty()) {
+    if (!visible.has_visible_face) throw InvalidInput("--pattern " + args.pattern + ": " + visible.empty_reason);
+    PatternImageOptions image_options;
+    image_options.long_side_px = pattern_options.reference_long_side_px;
+    image_options.line_width_px = pattern_options.line_width_px;
+    write_pattern_image(args.pattern, render_pattern_image(visible, image_options));
+  }
+  if (!args.msh.empty()) {
+    Eigen::VectorXd labels(mesh->tet_count());
+    for (int t = 0; t < mesh->tet_count(); ++t) labels(t) = result.fragments.fragment_of_tet[static_cast<std::size_t>(t)];
+    write_msh(args.msh, *mesh,
+              {{"fragment", MshView::Kind::ElementData, labels},
+               {"crack_onset_time", MshView::Kind::ElementData, crack_onset(*mesh, result)},
+               {"resistance", MshView::Kind::ElementData, resistance}});
+  }
+  progress.clear();
+  if (!target.reached) std::cerr << "fissure fracture: warning: --fragments: " << target.reason << '\n';
+  if (!args.quiet) {
+    std::FILE* out = args.stats == "-" ? stderr : stdout;
+    std::string pattern_text = visible.has_visible_face
+                                   ? std::to_string(stats.fragment_count) + " fragments, " +
+                                         std::to_string(stats.junction_count) + " junctions on the visible face"
+                                   : "no visible face (" + visible.empty_reason + ")";
+    std::fprintf(out, "%s: %d tets, %s, age %s: %zu cracks (%zu partial), %d fragments; %s; %s s preparation, %s s simulation\n",
+                 args.input.c_str(), mesh->tet_count(), material_name.c_str(), format_number(target.age, 4).c_str(),
+                 result.cracks.size(), result.partial_cracks.size(), result.fragments.count, pattern_text.c_str(),
+                 format_number(preparation_s, 3).c_str(), format_number(simulation_s, 3).c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_fracture(CLI::App& app, Action& action) {
+  auto args = std::make_shared<FractureArgs>();
+  auto* cmd = app.add_subcommand("fracture", std::string(command_info("fracture").summary));
+  add_threads_option(*cmd);
+  cmd->add_option("INPUT", args->input,
+                  "Closed surface (OBJ, PLY, STL, glTF/GLB, FBX, OFF), a tet mesh (.msh) or tile:W,H,T (metres)")
+      ->required();
+  cmd->add_option("--material", args->material,
+                  "Fracture material: a bundled name (" + [] {
+                    std::string names;
+                    for (const std::string& n : bundled_material_names()) names += (names.empty() ? "" : ", ") + n;
+                    return names;
+                  }() + ") or a .json file")
+      ->default_val(kDefaultMaterialName);
+  const auto& table = fracture_parameter_table();
+  for (std::size_t row = 0; row < table.size(); ++row) {
+    const ParameterInfo& info = table[row];
+    std::string help = std::string(info.help) + (info.unit[0] ? std::string(" [") + info.unit + "]" : std::string()) +
+                       " (overrides the material's)";
+    cmd->add_option_function<double>(
+           info.flag, [args, row](double value) { args->overrides[row] = value; }, help)
+        ->type_name("NUM")
+        ->check(finite_number());
+  }
+  cmd->add_option("--relaxation", args->relaxation, "Stress relaxation: directional (Eq. 3), isotropic (Eq. 4)");
+  cmd->add_option("--fix", args->fix,
+                  "Support SEL or SEL@xyz (repeatable); default: rollers on the rim of the lowest face");
+  cmd->add_option("--load", args->load,
+                  "Load SEL[^nx,ny,nz]=fx,fy,fz in N (repeatable); default: a patch at the centre of the top face "
+                  "pushing down with load_factor x body weight");
+  cmd->add_flag("--free", args->free_body, "Hold nothing: the load is balanced by inertia (inertia relief)");
+  cmd->add_option("--up", args->up, "Up axis (+x, -y, … or x,y,z); default: +y for glTF/FBX/DAE, else +z");
+  cmd->add_option("--view", args->view, "Direction the visible face looks along (default: up)");
+  cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age")
+      ->type_name("INT")
+      ->check(count_in(1, 1e6));
+  cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->default_val(1);
+  cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input")
+      ->type_name("INT")
+      ->default_val(24000)
+      ->check(count_in(10, 5e7));
+  cmd->add_option("--pattern", args->pattern, "Write the visible crack pattern as a line drawing (PNG)");
+  cmd->add_option("--pattern-size", args->pattern_size, "Long side of the pattern drawing, pixels")
+      ->type_name("INT")
+      ->default_val(1024)
+      ->check(count_in(64, 16384));
+  cmd->add_option("--stats", args->stats,
+                  "Write the visible pattern's statistics (the schema of fissure analyze --json, plus \"fracture\"); - for stdout");
+  cmd->add_option("--msh", args->msh, "Write the tet mesh with fragment labels and crack-onset times as gmsh views");
+  cmd->add_flag("--raw-stress", args->raw_stress, "Use the raw per-tet stress instead of the recovered one");
+  cmd->add_flag("--allow-large", args->allow_large, "Try a body whose estimated memory exceeds this machine's");
+  cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success, no progress");
+  cmd->callback([&action, args] { action = [args] { return run_fracture(*args); }; });
+}
+
+}  // namespace fissure::cli

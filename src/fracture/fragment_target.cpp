@@ -1,0 +1,58 @@
+#include "fissure/fracture/fragment_target.hpp"
+
+#include "fissure/base/error.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace fissure {
+
+FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const FractureParams& params,
+                                                const StressField& initial_stress, const Eigen::VectorXd& resistance,
+                                                std::uint64_t seed, int target, const SimulationOptions& options) {
+  if (target < 1) throw InvalidInput("--fragments " + std::to_string(target) + " must be at least 1");
+  FractureParams p = params;
+  if (!(p.age > 0.0)) p.age = 1.0;
+  FractureResult run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
+  for (int doubling = 0; doubling < 20 && run.fragments.count < target && !run.crack_limit_reached; ++doubling) {
+    if (p.stress_rate <= 0.0) break;  // a longer age opens nothing more
+    p.age *= 2.0;
+    run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
+  }
+  FragmentTargetResult out;
+  const int n = static_cast<int>(run.cracks.size());
+  auto fragments_of = [&](int k) { return label_fragments(body.mesh(), run.cracks, k).count; };
+  // Smallest prefix with ≥ target fragments (the count is non-decreasing in the prefix).
+  int lo = 0, hi = n;
+  if (fragments_of(n) < target) {
+    lo = hi = n;
+  } else {
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      (fragments_of(mid) >= target ? hi : lo) = mid + (fragments_of(mid) >= target ? 0 : 1);
+    }
+  }
+  int k = lo;
+  if (k > 0 && std::abs(fragments_of(k - 1) - target) <= std::abs(fragments_of(k) - target)) --k;
+  // The age of the state with k cracks: the k-th crack's time (crack_count_at counts cracks at
+  // or before an age), or 0 for none; the full run's age when all cracks are kept.
+  out.age = k == n ? run.simulated_age : (k == 0 ? 0.0 : run.cracks[static_cast<std::size_t>(k - 1)].time);
+  if (k < n && k > 0 && run.cracks[static_cast<std::size_t>(k)].time == out.age) {
+    // Cracks tied at one instant cannot be split by an age: keep the whole tie.
+    k = run.crack_count_at(out.age);
+  }
+  run.cracks.resize(static_cast<std::size_t>(k));
+  run.simulated_age = out.age;
+  run.crack_limit_reached = run.crack_limit_reached && k == n;
+  run.fragments = label_fragments(body.mesh(), run.cracks, k, &run.partial_cracks);
+  out.reached = std::abs(run.fragments.count - target) <= std::max(1.0, 0.2 * target);
+  if (!out.reached) {
+    out.reason = "reached " + std::to_string(run.fragments.count) + " fragments, not about " + std::to_string(target) +
+                 (p.stress_rate <= 0.0 ? " (with no stress rate the age changes nothing: raise --stress-rate or the load)"
+                                       : " (the nearest count any age gives)");
+  }
+  out.result = std::move(run);
+  return out;
+}
+
+}  // namespace fissure

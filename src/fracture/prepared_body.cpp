@@ -1,0 +1,52 @@
+#include "fissure/fracture/prepared_body.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/fem/load.hpp"
+
+namespace fissure {
+namespace {
+
+std::vector<int> fixed_dofs_of(const TetMesh& mesh, const FractureScenario& scenario) {
+  if (scenario.free_body) return {};
+  if (!scenario.supports.empty()) return resolve_supports(mesh, scenario.supports);
+  return default_support_dofs(mesh, scenario.up);
+}
+
+}  // namespace
+
+PreparedBody::PreparedBody(std::shared_ptr<const TetMesh> mesh, const ElasticMaterial& material,
+                           const FractureScenario& scenario, int threads)
+    : m_scenario(scenario),
+      m_body(std::make_shared<const ElasticBody>(mesh, material, threads)),
+      m_recovery(*mesh),
+      m_fracture_body(mesh) {
+  if (!(m_scenario.up.norm() > 0.0)) throw InvalidInput("the up direction is zero");
+  m_scenario.up.normalize();
+  if (m_scenario.free_body && !m_scenario.supports.empty()) throw InvalidInput("--free and --fix exclude each other");
+  m_solver = std::make_unique<StaticSolver>(m_body, fixed_dofs_of(*mesh, m_scenario));
+  m_unit_load = Eigen::VectorXd::Zero(3 * mesh->node_count());
+  if (m_scenario.loads.empty()) {
+    m_loads = {fissure::default_load(*mesh, m_scenario.up, 1.0, m_scenario.patch_radius)};
+    m_default_load = true;
+  } else {
+    m_loads = m_scenario.loads;
+  }
+  for (const LoadSpec& load : m_loads) m_unit_load += assemble_load(*mesh, load);
+}
+
+Eigen::VectorXd PreparedBody::load_vector(const FractureParams& params) const {
+  if (!m_default_load) return m_unit_load;
+  return (params.load_factor * m_fracture_body.mass(params.density) * kStandardGravity) * m_unit_load;
+}
+
+StressField PreparedBody::initial_stress(const FractureParams& params, bool recovered) const {
+  const Eigen::VectorXd f = load_vector(params);
+  if (f.isZero(0.0)) return StressField::Zero(mesh().tet_count(), 6);
+  const StaticSolution solution = m_solver->solve(f);
+  if (!recovered) return compute_stress(*m_body, solution.displacement);
+  PrincipalStressField field;
+  compute_principal_stress(*m_body, solution.displacement, m_recovery, field);
+  return field.stress;
+}
+
+}  // namespace fissure
