@@ -109,19 +109,15 @@ public:
     labels.fragment_of_tet.resize(static_cast<std::size_t>(m_mesh.tet_count()));
     std::vector<int> centre_piece(static_cast<std::size_t>(m_mesh.tet_count()));
     for (int t = 0; t < m_mesh.tet_count(); ++t) centre_piece[static_cast<std::size_t>(t)] = piece(t, {0.25, 0.25, 0.25, 0.25}, true);
-    // Number fragments by the lowest tet whose centroid lies in them; pieces holding no centroid
-    // (slivers cut off by cracks) count after those, in order of their ids.
+    // Number fragments by the lowest tet whose centroid lies in them. Pieces holding no centroid
+    // (slivers a crack cuts off a tet's corner, or between two cracks in one tet) join a
+    // fragment where a probe finds them connected and are not counted otherwise: the labels do
+    // not resolve anything smaller than a tet's share, the fragment meshing does.
     std::vector<int> number(m_sets.size(), -1);
     for (int t = 0; t < m_mesh.tet_count(); ++t) {
       const int root = m_sets.find(centre_piece[static_cast<std::size_t>(t)]);
       if (number[static_cast<std::size_t>(root)] < 0) number[static_cast<std::size_t>(root)] = labels.count++;
       labels.fragment_of_tet[static_cast<std::size_t>(t)] = number[static_cast<std::size_t>(root)];
-    }
-    for (std::size_t id = 0; id < m_sets.size(); ++id) {
-      // The first #tets ids are the uncut tets' single pieces; a cut tet's id is unused.
-      if (id < m_cuts.size() && !m_cuts[id].empty()) continue;
-      const int root = m_sets.find(static_cast<int>(id));
-      if (number[static_cast<std::size_t>(root)] < 0) number[static_cast<std::size_t>(root)] = labels.count++;
     }
     return labels;
   }

@@ -2,6 +2,7 @@
 
 #include "fissure/base/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
@@ -14,9 +15,10 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
   FractureParams p = params;
   if (!(p.age > 0.0)) p.age = 1.0;
   FractureResult run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
+  const double max_age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))].max;
   for (int doubling = 0; doubling < 20 && run.fragments.count < target && !run.crack_limit_reached; ++doubling) {
-    if (p.stress_rate <= 0.0) break;  // a longer age opens nothing more
-    p.age *= 2.0;
+    if (p.stress_rate <= 0.0 || p.age >= max_age) break;  // a longer age opens nothing more, or is out of range
+    p.age = std::min(2.0 * p.age, max_age);
     run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
   }
   FragmentTargetResult out;

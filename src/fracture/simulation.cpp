@@ -276,7 +276,14 @@ private:
     // G_e = π a σ_n² / E is Griffith's release rate for a crack of size a = max(√(A/π), a_f)
     // under the normal stress σ_n across it; a tet that would drive B below zero is not entered.
     std::vector<CrackCut>& cuts = crack.cuts;
-    std::deque<int> frontier;
+    // A frontier entry: a tet of E_c and whether the flood reached it from a T-junction tet
+    // (then it is completing the junction: see below).
+    struct Front {
+      int tet;
+      int cut;  // index in cuts
+      bool joining;
+    };
+    std::deque<Front> frontier;
     double budget = 0.0, area = 0.0;
     auto release = [&](int tet, const std::vector<Eigen::Vector3d>& polygon) {
       const Eigen::Vector3d av = detail::polygon_area_vector(polygon);
@@ -293,12 +300,17 @@ private:
       area = a_e;
       cuts.push_back(first);
       m_flood_stamp[static_cast<std::size_t>(origin)] = k;
-      frontier.push_back(origin);
+      frontier.push_back({origin, 0, false});
     }
     std::vector<int> stopped_on;
     while (!frontier.empty()) {
-      const int tet = frontier.front();
+      const Front front = frontier.front();
       frontier.pop_front();
+      const int tet = front.tet;
+      // In a T-junction tet the crack exists on its arrival side of the earlier crack only; it
+      // goes on through the faces its trace crosses on that side, to close the junction there.
+      const CrackCut clipped = cuts[static_cast<std::size_t>(front.cut)];
+      const CrackCut* clip = clipped.clipped_by >= 0 ? &cut_of(clipped.clipped_by, tet) : nullptr;
       for (int f = 0; f < 4; ++f) {
         const int u = m_mesh.neighbours()(tet, f);
         if (u < 0 || m_flood_stamp[static_cast<std::size_t>(u)] == k) continue;
@@ -307,6 +319,8 @@ private:
         bool pos = false, neg = false;
         for (int i : face) (node_value(k, surface, m_mesh.tets()(tet, i)) > 0.0 ? pos : neg) = true;
         if (!(pos && neg)) continue;
+        if (clip && arrival_side(tet, f, tet, k, surface, *clip) != clipped.clip_side) continue;
+        const bool joining = clip != nullptr || front.joining;
         CrackCut cut = make_cut(k, surface, u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
         if (!earlier.empty()) {
@@ -319,6 +333,7 @@ private:
           m_flood_stamp[static_cast<std::size_t>(u)] = k;
           cuts.push_back(cut);
           stopped_on.push_back(j);
+          frontier.push_back({u, static_cast<int>(cuts.size()) - 1, true});
           continue;
         }
         const auto polygon = crack_polygon(tet_nodes(u), cut);
@@ -328,13 +343,15 @@ private:
         // approaching tip, and a crack that stops just short of another reads as a gap in the
         // drawing, not a T. Running alongside a crack (no closer) does not count.
         const double near_u = m_near_crack[static_cast<std::size_t>(u)];
-        const bool closing_in = near_u < m_join_distance && near_u < m_near_crack[static_cast<std::size_t>(tet)];
+        const bool closing_in = near_u < m_join_distance && (joining || near_u < m_near_crack[static_cast<std::size_t>(tet)]);
         if (gain < 0.0 && budget + gain < 0.0 && !closing_in) continue;
+        // Beyond the join distance a joining flood is an ordinary one again.
+        const bool still_joining = joining && near_u < m_join_distance;
         budget += gain;
         area += a_e;
         m_flood_stamp[static_cast<std::size_t>(u)] = k;
         cuts.push_back(cut);
-        frontier.push_back(u);
+        frontier.push_back({u, static_cast<int>(cuts.size()) - 1, still_joining});
       }
     }
     std::sort(stopped_on.begin(), stopped_on.end());

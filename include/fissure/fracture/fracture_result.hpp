@@ -15,7 +15,8 @@ namespace fissure {
 /// probed at seven points of the face (inset corners, inset edge midpoints, centre), so a piece
 /// thinner than about a sixth of a face can be missed: the exact construction is the fragment
 /// meshing's. A crack that ends inside the body (partial) does not separate: the pieces beyond
-/// its tip connect both sides. A tet's label is that of the piece holding its centroid.
+/// its tip connect both sides. A tet's label is that of the piece holding its centroid; a
+/// fragment that holds no tet centroid (a sliver) is not counted.
 struct FragmentLabels {
   std::vector<int> fragment_of_tet;  ///< in [0, count), numbered by lowest tet index
   int count = 0;

@@ -15,7 +15,7 @@ struct FragmentTargetResult {
   std::string reason;
 };
 
-/// Simulates from params.age, doubling the age (up to 2^20 times params.age, or until the crack
+/// Simulates from params.age, doubling the age (up to the table's largest age, or until the crack
 /// limit) until the fragment count reaches `target`, then returns the prefix nearest to it (ties:
 /// the smaller). Without a stress rate the age changes nothing once the load's cracks have opened:
 /// `reached` is then false unless the load alone gives the target. Throws as simulate_fracture,
