@@ -57,7 +57,7 @@ class Simulation {
 public:
   Simulation(const FractureBody& body, const FractureParams& params, const StressField& initial,
              const Eigen::VectorXd& resistance, std::uint64_t seed, const SimulationOptions& options)
-      : m_body(body), m_mesh(body.mesh()), m_params(params), m_resistance(resistance), m_seed(seed),
+      : m_body(body), m_mesh(body.mesh()), m_params(params), m_initial(initial), m_resistance(resistance), m_seed(seed),
         m_options(options), m_propagation(m_mesh) {
     const auto n = static_cast<std::size_t>(m_mesh.tet_count());
     m_stress.resize(n);
@@ -129,11 +129,20 @@ private:
 
   double run_events(FractureResult& result) {
     const double age = m_params.age;
-    std::priority_queue<Event, std::vector<Event>, std::greater<>> queue;
+    // The queue starts from lower bounds of the crossing times, (R − λ_max)/rate (λ_max grows
+    // at most at `rate`), from one vectorised λ_max pass: an early entry is re-checked when
+    // popped like a stale one, so only the tets that come up pay for the exact crossing time.
+    Eigen::VectorXd lambda;
+    max_principal_of(m_initial, lambda);
+    std::vector<Event> entries;
+    entries.reserve(static_cast<std::size_t>(m_mesh.tet_count()));
+    const double rate = m_params.stress_rate;
     for (int t = 0; t < m_mesh.tet_count(); ++t) {
-      const double when = crossing_time(t, 0.0);
-      if (when <= age) queue.push({when, -ratio(t, when), t});
+      const double r = m_resistance(t);
+      const double bound = lambda(t) >= r ? 0.0 : (rate > 0.0 ? (r - lambda(t)) / rate : kInf);
+      if (bound <= age) entries.push_back({bound, -lambda(t) / r, t});
     }
+    std::priority_queue<Event, std::vector<Event>, std::greater<>> queue(std::greater<>{}, std::move(entries));
     double now = 0.0;
     while (!queue.empty()) {
       const Event e = queue.top();
@@ -481,6 +490,7 @@ private:
   const FractureBody& m_body;
   const TetMesh& m_mesh;
   const FractureParams& m_params;
+  const StressField& m_initial;
   const Eigen::VectorXd& m_resistance;
   std::uint64_t m_seed;
   SimulationOptions m_options;

@@ -16,6 +16,12 @@ from datetime import datetime, timezone
 SECTION_NOTES = {
     "bench_mesh": "CGAL Mesh_3 tetrahedralisation of the 1 × 1 × 0.05 m tile (facet angle 20°, perturb + exude "
                   "to 12° on the accepted refinement only), one call per size. Target: 24K tets ≤ 1 s.",
+    "bench_fracture": "The fracture simulation alone (issue 10), body prepared and σ⁰ computed once: "
+                      "simulate_fracture per iteration (/b/c/0) and with the visible pattern and its statistics "
+                      "(/b/c/1). b = 0: a structured 1 × 1 × 0.02 m tile of 6,912 tets; 1: a 1 × 1 × 0.1 m slab of "
+                      "54,000 tets at r_relax = 5 cm; c: the number of cracks (SimulationOptions::max_cracks on a "
+                      "run that would open more). Targets: 7K with 4–5 cracks ≤ 2 ms, 54K with about 270 cracks "
+                      "≤ 50 ms (the paper on 2008 hardware: 16 and 264 ms).",
     "bench_prepare_body": "Per-body preparation, one call per body and size: tetrahedralise + assemble K (the "
                           "ElasticBody) + factor K with supports (the StaticSolver), each stage's process CPU seconds as a "
                           "counter, with the tet count, the meshing attempts and the min dihedral angle. body 0 = "
