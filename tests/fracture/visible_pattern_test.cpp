@@ -5,6 +5,8 @@
 #include "fissure/exemplar/similarity.hpp"
 #include "fissure/fracture/pattern_image.hpp"
 #include "fissure/mesh/structured_box.hpp"
+#include "fissure/mesh/tetrahedralize.hpp"
+#include "fissure/mesh/tile.hpp"
 
 #include "../support/test_support.hpp"
 #include "synthetic_cracks.hpp"
@@ -305,6 +307,26 @@ TEST(VisiblePattern, ARandomHierarchicalPatternDrawnAndAnalysedAgrees) {
   const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-hierarchical");
   EXPECT_EQ(geometric.fragment_count, 21);
   EXPECT_GT(geometric.t_count, 10);
+}
+
+// On CGAL's unstructured tile (≈ 7K tets): the traces end on the cracks they stop on, whatever
+// the triangles, so every cell of the hierarchical pattern is a fragment.
+TEST(VisiblePattern, OnAnUnstructuredTileEveryCellIsAFragment) {
+  TetrahedralizeOptions options;
+  options.target_tets = 7000;
+  const TetMesh mesh = tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options);
+  std::vector<CrackSurface> cracks;
+  test::add_hierarchical_cracks(mesh, cracks, 50, 1, {-0.5, -0.5}, {0.5, 0.5});
+  const VisiblePattern p = extract_visible_pattern(mesh, cracks, 50, Eigen::Vector3d::UnitZ());
+  const PlanarCrackGraph& g = p.graph;
+  double sum = 0.0;
+  for (const Fragment& f : g.fragments) sum += f.area;
+  EXPECT_NEAR(sum, 1.0, kExact);
+  EXPECT_NEAR(g.total_area, 1.0, kExact);
+  for (const CrackNode& n : g.nodes) {
+    EXPECT_NE(n.kind, CrackNode::Kind::End) << "free end at " << n.position.transpose();
+  }
+  EXPECT_EQ(g.fragments.size(), 51u);
 }
 
 }  // namespace
