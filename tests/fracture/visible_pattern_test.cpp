@@ -8,11 +8,13 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/mesh/tile.hpp"
 
+#include "../support/test_shapes.hpp"
 #include "../support/test_support.hpp"
 #include "synthetic_cracks.hpp"
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <iostream>
 #include <numbers>
 
@@ -268,10 +270,11 @@ std::pair<PatternStats, PatternStats> compare_with_drawing(const TetMesh& mesh, 
   const VisiblePattern p = extract_visible_pattern(mesh, cracks, static_cast<int>(cracks.size()), Eigen::Vector3d::UnitZ());
   const PatternStats geometric = compute_pattern_stats(p.graph, p.stats_options);
   const PatternImage image = render_pattern_image(p);
-  EXPECT_TRUE(image.roi.pixels.empty());  // a tile's top face fills the frame
   const auto dir = test::fresh_temp_dir(name);
-  write_pattern_image(dir / "pattern.png", image);
-  const ExemplarAnalysis seen = analyze_exemplar(dir / "pattern.png");
+  write_pattern_image(dir / "pattern.png", image, dir / "roi.png");
+  ExemplarAnalysisOptions options;
+  if (!image.roi.pixels.empty()) options.image.roi_path = dir / "roi.png";
+  const ExemplarAnalysis seen = analyze_exemplar(dir / "pattern.png", options);
   EXPECT_EQ(seen.stats.fragment_count, geometric.fragment_count);
   EXPECT_EQ(seen.stats.junction_count, geometric.junction_count);
   EXPECT_EQ(seen.stats.t_count, geometric.t_count);
@@ -295,6 +298,7 @@ TEST(VisiblePattern, TheDrawingAnalysedAsAnExemplarGivesTheSameStatistics) {
   EXPECT_EQ(geometric.x_count, 3);
   const VisiblePattern p = extract_visible_pattern(b.mesh, b.cracks, static_cast<int>(b.cracks.size()), Eigen::Vector3d::UnitZ());
   const PatternImage image = render_pattern_image(p);
+  EXPECT_TRUE(image.roi.pixels.empty());  // a tile's top face fills the frame
   EXPECT_EQ(image.drawing.width, 1024);
   EXPECT_EQ(image.drawing.height, 717);  // 0.7 × 1024 = 716.8
 }
@@ -307,6 +311,25 @@ TEST(VisiblePattern, ARandomHierarchicalPatternDrawnAndAnalysedAgrees) {
   const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-hierarchical");
   EXPECT_EQ(geometric.fragment_count, 21);
   EXPECT_GT(geometric.t_count, 10);
+}
+
+// A visible face that does not fill its frame (the top of an L-shaped prism, 3 of its 4 m²): the
+// drawing comes with a mask of the face, and the analysis inside that mask agrees the same way.
+TEST(VisiblePattern, AFaceThatDoesNotFillItsFrameIsAnalysedInsideItsMask) {
+  TetrahedralizeOptions options;
+  options.target_tets = 7000;
+  const TetMesh mesh = tetrahedralize(test::l_prism(), options);
+  std::vector<CrackSurface> cracks;
+  test::add_hierarchical_cracks(mesh, cracks, 12, 3, {0.0, 0.0}, {2.0, 2.0});
+  const VisiblePattern p = extract_visible_pattern(mesh, cracks, static_cast<int>(cracks.size()), Eigen::Vector3d::UnitZ());
+  EXPECT_NEAR(p.graph.total_area, 3.0, kExact);
+  const PatternImage image = render_pattern_image(p);
+  ASSERT_EQ(image.roi.pixels.size(), image.drawing.pixels.size());
+  // The mask covers three quarters of the square image (to the pixels along the notch's edges).
+  const auto inside = std::count(image.roi.pixels.begin(), image.roi.pixels.end(), 255);
+  EXPECT_NEAR(static_cast<double>(inside) / static_cast<double>(image.roi.pixels.size()), 0.75, 2.0 / 1024);
+  const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-l-prism");
+  EXPECT_GE(geometric.fragment_count, 8);
 }
 
 // On CGAL's unstructured tile (≈ 7K tets): the traces end on the cracks they stop on, whatever
@@ -327,6 +350,41 @@ TEST(VisiblePattern, OnAnUnstructuredTileEveryCellIsAFragment) {
     EXPECT_NE(n.kind, CrackNode::Kind::End) << "free end at " << n.position.transpose();
   }
   EXPECT_EQ(g.fragments.size(), 51u);
+}
+
+// Every refusal names its culprit; nothing is half-built.
+TEST(VisiblePattern, BadInputIsRefusedNamingTheCulprit) {
+  const TetMesh mesh = unit_tile(4);
+  std::vector<CrackSurface> cracks = full_cracks_a_and_b(mesh);
+  auto message = [&](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 2, Eigen::Vector3d::Zero()); }).find("view direction"), std::string::npos);
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 3, up); }).find("crack count 3"), std::string::npos);
+  VisiblePatternOptions wide;
+  wide.max_angle_deg = 90.0;
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 2, up, wide); }).find("max_angle_deg"), std::string::npos);
+  std::vector<CrackSurface> broken = cracks;
+  broken[1].cuts[0].node_values[2] = NAN;
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("crack 1 has a non-finite value in tet "), std::string::npos);
+  broken = cracks;
+  broken[1].cuts[0].tet = mesh.tet_count();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("crack 1 cuts tet index"), std::string::npos);
+  // A clip by a crack that does not cut the tet (checked in the tets that own a visible face).
+  broken = cracks;
+  for (CrackCut& cut : broken[0].cuts) cut.clipped_by = 1;
+  broken[1].cuts.clear();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("which that crack does not cut"), std::string::npos);
+  PatternImageOptions tiny;
+  tiny.long_side_px = 4;
+  const VisiblePattern p = extract_visible_pattern(mesh, cracks, 2, up);
+  EXPECT_NE(message([&] { render_pattern_image(p, tiny); }).find("long_side_px 4"), std::string::npos);
 }
 
 }  // namespace
