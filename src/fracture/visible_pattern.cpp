@@ -2,6 +2,7 @@
 
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
+#include "fissure/exemplar/crack_image.hpp"
 
 #include <Eigen/Geometry>
 
@@ -169,8 +170,8 @@ std::string vector_text(const Eigen::Vector3d& v) {
 std::vector<std::string> VisiblePatternOptions::problems() const {
   std::vector<std::string> out;
   if (!(max_angle_deg >= 0.0 && max_angle_deg < 90.0)) out.push_back("max_angle_deg " + format_number(max_angle_deg) + " is outside [0, 90)");
-  if (reference_long_side_px < 8) {
-    out.push_back("reference_long_side_px " + std::to_string(reference_long_side_px) + " is below 8");
+  if (reference_long_side_px < kMinImageSide) {
+    out.push_back("reference_long_side_px " + std::to_string(reference_long_side_px) + " is below " + std::to_string(kMinImageSide));
   }
   if (!(std::isfinite(line_width_px) && line_width_px > 0.0)) {
     out.push_back("line_width_px " + format_number(line_width_px) + " is not positive and finite");
@@ -280,6 +281,11 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
   double total_area = 0.0;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
   result.visible_triangle_corners.reserve(visible.size());
+  // Most triangles are uncut: one piece and three footprints each.
+  footprints.reserve(3 * visible.size() + 16);
+  piece_area.reserve(visible.size() + 16);
+  piece_centroid.reserve(visible.size() + 16);
+  piece_on_border.reserve(visible.size() + 16);
 
   std::vector<FaceSegment> face_segments;
   std::vector<Piece> face_pieces, next;
