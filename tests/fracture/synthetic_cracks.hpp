@@ -25,7 +25,7 @@ struct PlaneCrack {
   /// Earlier cracks (indices) it ends on, T-junction style: it exists only on the side of each
   /// that `point` is on. In a tet that such a crack cuts, the cut is clipped by it when its
   /// polygon reaches the far side (CrackCut::clipped_by; at most one: see make_cut); elsewhere a
-  /// tet is kept when its centroid is on that side.
+  /// tet is kept when its polygon reaches that side.
   std::vector<int> stop_on;
   /// When set, only tets whose centroid satisfies it (a partial crack: it ends where the region
   /// does).
@@ -88,7 +88,7 @@ inline int add_plane_crack(const TetMesh& mesh, std::vector<CrackSurface>& crack
     // Stop cracks that cut this tet: the cut is clipped by the one the polygon runs into (at a
     // cell corner two may cut the tet, and the polygon usually crosses only one of them; when it
     // crosses several, by the one whose clipped polygon respects the others, else the first).
-    // Stop cracks that do not cut it: the centroid must be on the arrival side.
+    // Stop cracks that do not cut it: the polygon must reach the arrival side.
     const std::vector<Eigen::Vector3d> polygon = crack_polygon(nodes_of(t), cut);
     auto outside = [&](const std::vector<Eigen::Vector3d>& poly, std::size_t s) {
       const CrackSurface& j = cracks[static_cast<std::size_t>(spec.stop_on[s])];
@@ -99,7 +99,11 @@ inline int add_plane_crack(const TetMesh& mesh, std::vector<CrackSurface>& crack
     for (std::size_t s = 0; s < spec.stop_on.size(); ++s) {
       const CrackSurface& j = cracks[static_cast<std::size_t>(spec.stop_on[s])];
       if (cut_index[s][static_cast<std::size_t>(t)] < 0) {
-        if (side[s] * j.normal.dot(centroid - j.origin) < 0.0) return cut;
+        // Not cut by j: beyond the cell when the whole polygon is past j's plane. A polygon
+        // straddling the plane is where j does not reach (its own end, at a cell corner), and
+        // the centroid's side would open a gap there.
+        const bool past = std::all_of(polygon.begin(), polygon.end(), [&](const Eigen::Vector3d& x) { return side[s] * j.normal.dot(x - j.origin) < 0.0; });
+        if (past) return cut;
       } else if (outside(polygon, s)) {
         crossed.push_back(s);
       }
