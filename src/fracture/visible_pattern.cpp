@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <span>
 
 namespace fissure {
 namespace {
@@ -106,8 +107,13 @@ struct Point {
   bool on_border = false;
 };
 
+// A convex piece of a triangle, its vertices held inline: a triangle cut by m lines has pieces of
+// at most 3 + m vertices, and pieces are made and dropped by the thousand, so no heap allocation.
+constexpr int kMaxCracksPerTriangle = 29;
 struct Piece {
-  std::vector<Bary> vertices;
+  std::array<Bary, 3 + kMaxCracksPerTriangle> vertices;
+  int size = 0;
+  void push_back(const Bary& b) { vertices[static_cast<std::size_t>(size++)] = b; }
 };
 
 class UnionFind {
@@ -134,8 +140,8 @@ private:
 // `tolerance` of the line belong to both sides. Returns false (and leaves the outputs empty) when
 // the line does not pass through the piece's interior.
 bool split_piece(const Piece& piece, const Eigen::Vector3d& values, double tolerance, Piece& positive, Piece& negative) {
-  const std::size_t n = piece.vertices.size();
-  std::vector<double> v(n);
+  const auto n = static_cast<std::size_t>(piece.size);
+  std::array<double, 3 + kMaxCracksPerTriangle> v{};
   bool any_positive = false, any_negative = false;
   for (std::size_t i = 0; i < n; ++i) {
     v[i] = piece.vertices[i].dot(values);
@@ -144,18 +150,18 @@ bool split_piece(const Piece& piece, const Eigen::Vector3d& values, double toler
     any_negative |= v[i] < 0.0;
   }
   if (!any_positive || !any_negative) return false;
-  positive.vertices.clear();
-  negative.vertices.clear();
+  positive.size = 0;
+  negative.size = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
-    if (v[i] >= 0.0) positive.vertices.push_back(piece.vertices[i]);
-    if (v[i] <= 0.0) negative.vertices.push_back(piece.vertices[i]);
+    if (v[i] >= 0.0) positive.push_back(piece.vertices[i]);
+    if (v[i] <= 0.0) negative.push_back(piece.vertices[i]);
     if ((v[i] > 0.0 && v[j] < 0.0) || (v[i] < 0.0 && v[j] > 0.0)) {
       const double s = v[i] / (v[i] - v[j]);
       // A coordinate that is exactly 0 at both ends stays exactly 0: the point stays on that edge.
       const Bary p = piece.vertices[i] + s * (piece.vertices[j] - piece.vertices[i]);
-      positive.vertices.push_back(p);
-      negative.vertices.push_back(p);
+      positive.push_back(p);
+      negative.push_back(p);
     }
   }
   return true;
@@ -232,7 +238,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
     int& slot = slot_of_tet[static_cast<std::size_t>(boundary[static_cast<std::size_t>(f)].tet)];
     if (slot < 0) slot = slots++;
   }
-  std::vector<std::vector<std::pair<int, const CrackCut*>>> cuts_of_slot(static_cast<std::size_t>(slots));
+  // Compressed rows: slot r's cuts are cut_refs[cut_start[r] .. cut_start[r + 1]), in crack order
+  // (the fragment split below relies on it: a T's clipping crack cuts first).
+  std::vector<int> cut_start(static_cast<std::size_t>(slots) + 1, 0);
   for (int k = 0; k < crack_count; ++k) {
     for (const CrackCut& cut : cracks[static_cast<std::size_t>(k)].cuts) {
       if (cut.tet < 0 || cut.tet >= mesh.tet_count()) {
@@ -245,7 +253,18 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
         }
       }
       const int slot = slot_of_tet[static_cast<std::size_t>(cut.tet)];
-      if (slot >= 0) cuts_of_slot[static_cast<std::size_t>(slot)].emplace_back(k, &cut);
+      if (slot >= 0) ++cut_start[static_cast<std::size_t>(slot) + 1];
+    }
+  }
+  for (std::size_t r = 1; r < cut_start.size(); ++r) cut_start[r] += cut_start[r - 1];
+  std::vector<std::pair<int, const CrackCut*>> cut_refs(static_cast<std::size_t>(cut_start.back()));
+  {
+    std::vector<int> fill(cut_start.begin(), cut_start.end() - 1);
+    for (int k = 0; k < crack_count; ++k) {
+      for (const CrackCut& cut : cracks[static_cast<std::size_t>(k)].cuts) {
+        const int slot = slot_of_tet[static_cast<std::size_t>(cut.tet)];
+        if (slot >= 0) cut_refs[static_cast<std::size_t>(fill[static_cast<std::size_t>(slot)]++)] = {k, &cut};
+      }
     }
   }
 
@@ -289,7 +308,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
 
   std::vector<FaceSegment> face_segments;
   std::vector<Piece> face_pieces, next;
-  const Piece whole{{Bary::UnitX(), Bary::UnitY(), Bary::UnitZ()}};
+  Piece positive, negative;
+  Piece whole;
+  for (int i = 0; i < 3; ++i) whole.push_back(Bary::Unit(i));
   for (std::size_t vi = 0; vi < visible.size(); ++vi) {
     const BoundaryFace& face = boundary[static_cast<std::size_t>(visible[vi])];
     const auto tet_nodes = mesh.tets().row(face.tet);
@@ -319,7 +340,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       return Eigen::Vector3d(cut.node_values[static_cast<std::size_t>(local[0])], cut.node_values[static_cast<std::size_t>(local[1])],
                              cut.node_values[static_cast<std::size_t>(local[2])]);
     };
-    const auto& tet_cuts = cuts_of_slot[static_cast<std::size_t>(slot_of_tet[static_cast<std::size_t>(face.tet)])];
+    const auto slot = static_cast<std::size_t>(slot_of_tet[static_cast<std::size_t>(face.tet)]);
+    const std::span<const std::pair<int, const CrackCut*>> tet_cuts(cut_refs.data() + cut_start[slot],
+                                                                    cut_refs.data() + cut_start[slot + 1]);
 
     // Crack traces: the zero segment of each cut's values on this triangle, clipped for a T.
     face_segments.clear();
@@ -434,8 +457,12 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       piece_on_border.push_back(0);
       continue;
     }
+    if (face_segments.size() > static_cast<std::size_t>(kMaxCracksPerTriangle)) {
+      throw NumericalFailure(name + ": " + std::to_string(face_segments.size()) + " cracks cross one visible face of " +
+                             mesh.tet_label(face.tet) + ", more than the " + std::to_string(kMaxCracksPerTriangle) +
+                             " the visible pattern handles in one triangle");
+    }
     face_pieces.assign(1, whole);
-    std::stable_sort(face_segments.begin(), face_segments.end(), [](const FaceSegment& a, const FaceSegment& b) { return a.crack < b.crack; });
     for (const FaceSegment& s : face_segments) {
       const double line_tolerance = kOnLine * s.line.cwiseAbs().maxCoeff();
       const double clip_tolerance = kOnLine * s.clip.cwiseAbs().maxCoeff();
@@ -443,12 +470,11 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       for (const Piece& piece : face_pieces) {
         bool split_here = true;
         if (s.clipped) {
-          for (const Bary& v : piece.vertices) split_here &= v.dot(s.clip) >= -clip_tolerance;
+          for (int v = 0; v < piece.size; ++v) split_here &= piece.vertices[static_cast<std::size_t>(v)].dot(s.clip) >= -clip_tolerance;
         }
-        Piece positive, negative;
         if (split_here && split_piece(piece, s.line, line_tolerance, positive, negative)) {
-          next.push_back(std::move(positive));
-          next.push_back(std::move(negative));
+          next.push_back(positive);
+          next.push_back(negative);
         } else {
           next.push_back(piece);
         }
@@ -460,7 +486,7 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       double area = 0.0;
       Eigen::Vector2d moment = Eigen::Vector2d::Zero();
       const Eigen::Vector2d p0 = position(piece.vertices[0]);
-      for (std::size_t i = 1; i + 1 < piece.vertices.size(); ++i) {
+      for (std::size_t i = 1; i + 1 < static_cast<std::size_t>(piece.size); ++i) {
         const Eigen::Vector2d p1 = position(piece.vertices[i]), p2 = position(piece.vertices[i + 1]);
         const double a = 0.5 * ((p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x());
         area += a;
@@ -470,9 +496,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       const int id = piece_count;
       // Footprints on the triangle's edges: a piece edge lies on the edge opposite corner i when
       // both its ends have coordinate i exactly 0 (splitting keeps such zeros exact).
-      for (std::size_t e = 0; e < piece.vertices.size(); ++e) {
+      for (std::size_t e = 0; e < static_cast<std::size_t>(piece.size); ++e) {
         const Bary& u = piece.vertices[e];
-        const Bary& w = piece.vertices[(e + 1) % piece.vertices.size()];
+        const Bary& w = piece.vertices[(e + 1) % static_cast<std::size_t>(piece.size)];
         for (int i = 0; i < 3; ++i) {
           if (u[i] != 0.0 || w[i] != 0.0) continue;
           const int a = (i + 1) % 3, b = (i + 2) % 3;
