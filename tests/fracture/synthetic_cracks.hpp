@@ -30,6 +30,10 @@ struct PlaneCrack {
   /// When set, only tets whose centroid satisfies it (a partial crack: it ends where the region
   /// does).
   std::function<bool(const Eigen::Vector3d&)> region;
+  /// When set, added to S (metres): a curved crack, like the simulation's noisy planes. The
+  /// stop_on sides of later cracks are still judged by this crack's plane, so give an offset only
+  /// to cracks nothing stops on.
+  std::function<double(const Eigen::Vector3d&)> offset;
 };
 
 /// Mesh scale for the snapping rule of CrackCut (values within 1e-6·h of zero move off it): the
@@ -38,14 +42,16 @@ inline double crack_snap_length(const TetMesh& mesh) {
   return std::cbrt(6.0 * mesh.total_volume() / std::max(1, mesh.tet_count()));
 }
 
-/// S(x) of `crack`'s plane at the nodes of tet `t`, snapped off zero as the simulation does.
+/// S(x) = n̂·(x − point) (+ offset(x)) at the nodes of tet `t`, snapped off zero as the
+/// simulation does.
 inline std::array<double, 4> plane_node_values(const TetMesh& mesh, int t, const Eigen::Vector3d& unit_normal,
-                                               const Eigen::Vector3d& point) {
+                                               const Eigen::Vector3d& point,
+                                               const std::function<double(const Eigen::Vector3d&)>& offset = {}) {
   const double snap = 1e-6 * crack_snap_length(mesh);
   std::array<double, 4> v{};
   for (int i = 0; i < 4; ++i) {
     const Eigen::Vector3d x = mesh.nodes().row(mesh.tets()(t, i)).transpose();
-    double s = unit_normal.dot(x - point);
+    double s = unit_normal.dot(x - point) + (offset ? offset(x) : 0.0);
     if (std::abs(s) < snap) s = s < 0.0 ? -snap : snap;
     v[static_cast<std::size_t>(i)] = s;
   }
@@ -81,7 +87,7 @@ inline int add_plane_crack(const TetMesh& mesh, std::vector<CrackSurface>& crack
   // The cut of tet t, or a cut with tet = −1 when the crack may not be there.
   auto make_cut = [&](int t) {
     CrackCut cut;
-    cut.node_values = plane_node_values(mesh, t, n, spec.point);
+    cut.node_values = plane_node_values(mesh, t, n, spec.point, spec.offset);
     const auto [lo, hi] = std::minmax_element(cut.node_values.begin(), cut.node_values.end());
     const Eigen::Vector3d centroid = mesh.centroid(t);
     if (!(*lo < 0.0 && *hi > 0.0) || (spec.region && !spec.region(centroid))) return cut;

@@ -313,6 +313,28 @@ TEST(VisiblePattern, ARandomHierarchicalPatternDrawnAndAnalysedAgrees) {
   EXPECT_GT(geometric.t_count, 10);
 }
 
+// Curved cracks, like the simulation's noisy planes: wavy full cracks (amplitude 8 mm, wavelength
+// 0.25 m, so the traces bend across elements of ≈ 2 cm) crossing in a 4 × 3 grid: 20 fragments,
+// 12 X junctions, traces that are polylines of element-sized segments.
+TEST(VisiblePattern, CurvedCracksDrawnAndAnalysedAgree) {
+  const TetMesh mesh = make_structured_box({-0.5, -0.5, 0.0}, {1.0, 1.0, 0.05}, 45, 45, 2);
+  std::vector<CrackSurface> cracks;
+  const double k = 2.0 * std::numbers::pi / 0.25;
+  for (const double x : {-0.3117, -0.0613, 0.1891, 0.3713}) {
+    test::PlaneCrack c{Eigen::Vector3d::UnitX(), {x, 0.0, 0.0}, {}, {}, {}};
+    c.offset = [k](const Eigen::Vector3d& p) { return 0.008 * std::sin(k * p.y() + 1.0); };
+    add_plane_crack(mesh, cracks, c);
+  }
+  for (const double y : {-0.2219, 0.0517, 0.2773}) {
+    test::PlaneCrack c{Eigen::Vector3d::UnitY(), {0.0, y, 0.0}, {}, {}, {}};
+    c.offset = [k](const Eigen::Vector3d& p) { return 0.008 * std::cos(k * p.x()); };
+    add_plane_crack(mesh, cracks, c);
+  }
+  const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-curved");
+  EXPECT_EQ(geometric.fragment_count, 20);
+  EXPECT_EQ(geometric.x_count, 12);
+}
+
 // A visible face that does not fill its frame (the top of an L-shaped prism, 3 of its 4 m²): the
 // drawing comes with a mask of the face, and the analysis inside that mask agrees the same way.
 TEST(VisiblePattern, AFaceThatDoesNotFillItsFrameIsAnalysedInsideItsMask) {
