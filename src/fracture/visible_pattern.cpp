@@ -2,6 +2,7 @@
 
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
+#include "fissure/exemplar/crack_image.hpp"
 
 #include <Eigen/Geometry>
 
@@ -9,7 +10,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
-#include <unordered_map>
+#include <span>
 
 namespace fissure {
 namespace {
@@ -31,16 +32,61 @@ std::uint64_t edge_key(int a, int b) {
   return (lo << 32) | hi;
 }
 
-// Where crack `crack` crosses mesh edge `edge`: the key of a shared trace point.
-struct EdgeCrack {
-  std::uint64_t edge;
-  int crack;
-  bool operator==(const EdgeCrack&) const = default;
-};
-struct EdgeCrackHash {
-  std::size_t operator()(const EdgeCrack& k) const {
-    return std::hash<std::uint64_t>{}(k.edge * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(k.crack));
+// Dense indices for 64-bit keys (never 0): open addressing with linear probing in a table at least
+// twice the expected count, so a lookup is one or two probes and nothing is allocated per key.
+// A std::unordered_map allocated a node per edge, and sorting the keys instead took a third of
+// the extraction (bench_visible_pattern).
+class KeyIndex {
+public:
+  explicit KeyIndex(std::size_t expected) {
+    std::size_t size = 16;
+    while (size < 2 * expected) size *= 2;
+    m_keys.assign(size, 0);
+    m_values.assign(size, -1);
+    m_mask = size - 1;
   }
+  /// The index of `key`, giving it the next one (count()) when it is new.
+  int insert(std::uint64_t key) {
+    std::size_t slot = probe(key);
+    if (m_keys[slot] == key) return m_values[slot];
+    if (2 * static_cast<std::size_t>(m_count + 1) > m_keys.size()) {
+      grow();
+      slot = probe(key);
+    }
+    m_keys[slot] = key;
+    m_values[slot] = m_count;
+    return m_count++;
+  }
+  /// The index of `key`, or −1.
+  int find(std::uint64_t key) const {
+    const std::size_t slot = probe(key);
+    return m_keys[slot] == key ? m_values[slot] : -1;
+  }
+  int count() const { return m_count; }
+
+private:
+  std::size_t probe(std::uint64_t key) const {
+    std::size_t slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & m_mask;
+    while (m_keys[slot] != 0 && m_keys[slot] != key) slot = (slot + 1) & m_mask;
+    return slot;
+  }
+  void grow() {
+    std::vector<std::uint64_t> keys = std::move(m_keys);
+    std::vector<int> values = std::move(m_values);
+    m_keys.assign(2 * keys.size(), 0);
+    m_values.assign(2 * keys.size(), -1);
+    m_mask = m_keys.size() - 1;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == 0) continue;
+      const std::size_t slot = probe(keys[i]);
+      m_keys[slot] = keys[i];
+      m_values[slot] = values[i];
+    }
+  }
+  std::vector<std::uint64_t> m_keys;
+  std::vector<int> m_values;
+  std::size_t m_mask = 0;
+  int m_count = 0;
 };
 
 // A crack's trace on one visible triangle (before junction splits).
@@ -61,8 +107,15 @@ struct Point {
   bool on_border = false;
 };
 
+// A convex piece of a triangle, its vertices held inline: a triangle cut by m lines has pieces of
+// at most 3 + m vertices, and pieces are made and dropped by the thousand, so no heap allocation.
+// 29 makes a piece 32 vertices (768 bytes); at 7K–54K tets a triangle is 1–3 cm wide, and 29
+// cracks through one would be cracks a millimetre apart.
+constexpr int kMaxCracksPerTriangle = 29;
 struct Piece {
-  std::vector<Bary> vertices;
+  std::array<Bary, 3 + kMaxCracksPerTriangle> vertices;
+  int size = 0;
+  void push_back(const Bary& b) { vertices[static_cast<std::size_t>(size++)] = b; }
 };
 
 class UnionFind {
@@ -89,8 +142,8 @@ private:
 // `tolerance` of the line belong to both sides. Returns false (and leaves the outputs empty) when
 // the line does not pass through the piece's interior.
 bool split_piece(const Piece& piece, const Eigen::Vector3d& values, double tolerance, Piece& positive, Piece& negative) {
-  const std::size_t n = piece.vertices.size();
-  std::vector<double> v(n);
+  const auto n = static_cast<std::size_t>(piece.size);
+  std::array<double, 3 + kMaxCracksPerTriangle> v{};
   bool any_positive = false, any_negative = false;
   for (std::size_t i = 0; i < n; ++i) {
     v[i] = piece.vertices[i].dot(values);
@@ -99,18 +152,18 @@ bool split_piece(const Piece& piece, const Eigen::Vector3d& values, double toler
     any_negative |= v[i] < 0.0;
   }
   if (!any_positive || !any_negative) return false;
-  positive.vertices.clear();
-  negative.vertices.clear();
+  positive.size = 0;
+  negative.size = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
-    if (v[i] >= 0.0) positive.vertices.push_back(piece.vertices[i]);
-    if (v[i] <= 0.0) negative.vertices.push_back(piece.vertices[i]);
+    if (v[i] >= 0.0) positive.push_back(piece.vertices[i]);
+    if (v[i] <= 0.0) negative.push_back(piece.vertices[i]);
     if ((v[i] > 0.0 && v[j] < 0.0) || (v[i] < 0.0 && v[j] > 0.0)) {
       const double s = v[i] / (v[i] - v[j]);
       // A coordinate that is exactly 0 at both ends stays exactly 0: the point stays on that edge.
       const Bary p = piece.vertices[i] + s * (piece.vertices[j] - piece.vertices[i]);
-      positive.vertices.push_back(p);
-      negative.vertices.push_back(p);
+      positive.push_back(p);
+      negative.push_back(p);
     }
   }
   return true;
@@ -125,8 +178,8 @@ std::string vector_text(const Eigen::Vector3d& v) {
 std::vector<std::string> VisiblePatternOptions::problems() const {
   std::vector<std::string> out;
   if (!(max_angle_deg >= 0.0 && max_angle_deg < 90.0)) out.push_back("max_angle_deg " + format_number(max_angle_deg) + " is outside [0, 90)");
-  if (reference_long_side_px < 8) {
-    out.push_back("reference_long_side_px " + std::to_string(reference_long_side_px) + " is below 8");
+  if (reference_long_side_px < kMinImageSide) {
+    out.push_back("reference_long_side_px " + std::to_string(reference_long_side_px) + " is below " + std::to_string(kMinImageSide));
   }
   if (!(std::isfinite(line_width_px) && line_width_px > 0.0)) {
     out.push_back("line_width_px " + format_number(line_width_px) + " is not positive and finite");
@@ -187,7 +240,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
     int& slot = slot_of_tet[static_cast<std::size_t>(boundary[static_cast<std::size_t>(f)].tet)];
     if (slot < 0) slot = slots++;
   }
-  std::vector<std::vector<std::pair<int, const CrackCut*>>> cuts_of_slot(static_cast<std::size_t>(slots));
+  // Compressed rows: slot r's cuts are cut_refs[cut_start[r] .. cut_start[r + 1]), in crack order
+  // (the fragment split below relies on it: a T's clipping crack cuts first).
+  std::vector<int> cut_start(static_cast<std::size_t>(slots) + 1, 0);
   for (int k = 0; k < crack_count; ++k) {
     for (const CrackCut& cut : cracks[static_cast<std::size_t>(k)].cuts) {
       if (cut.tet < 0 || cut.tet >= mesh.tet_count()) {
@@ -200,39 +255,64 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
         }
       }
       const int slot = slot_of_tet[static_cast<std::size_t>(cut.tet)];
-      if (slot >= 0) cuts_of_slot[static_cast<std::size_t>(slot)].emplace_back(k, &cut);
+      if (slot >= 0) ++cut_start[static_cast<std::size_t>(slot) + 1];
+    }
+  }
+  for (std::size_t r = 1; r < cut_start.size(); ++r) cut_start[r] += cut_start[r - 1];
+  std::vector<std::pair<int, const CrackCut*>> cut_refs(static_cast<std::size_t>(cut_start.back()));
+  {
+    std::vector<int> fill(cut_start.begin(), cut_start.end() - 1);
+    for (int k = 0; k < crack_count; ++k) {
+      for (const CrackCut& cut : cracks[static_cast<std::size_t>(k)].cuts) {
+        const int slot = slot_of_tet[static_cast<std::size_t>(cut.tet)];
+        if (slot >= 0) cut_refs[static_cast<std::size_t>(fill[static_cast<std::size_t>(slot)]++)] = {k, &cut};
+      }
     }
   }
 
   // Edges of the visible region: how many visible triangles use each mesh edge (2 inside, 1 on the
   // border of the region).
-  std::unordered_map<std::uint64_t, int> edge_use;
-  edge_use.reserve(visible.size() * 2);
+  KeyIndex edges(visible.size() * 2);  // a closed triangulation has 1.5 edges a triangle
+  std::vector<int> edge_use;
   for (const int f : visible) {
     const auto& n = boundary[static_cast<std::size_t>(f)].nodes;
-    for (int i = 0; i < 3; ++i) ++edge_use[edge_key(n[static_cast<std::size_t>(i)], n[static_cast<std::size_t>((i + 1) % 3)])];
+    for (int i = 0; i < 3; ++i) {
+      const int e = edges.insert(edge_key(n[static_cast<std::size_t>(i)], n[static_cast<std::size_t>((i + 1) % 3)]));
+      if (e == static_cast<int>(edge_use.size())) edge_use.push_back(0);
+      ++edge_use[static_cast<std::size_t>(e)];
+    }
   }
 
   std::vector<Point> points;
-  std::unordered_map<EdgeCrack, int, EdgeCrackHash> edge_point;  // looked up, never iterated
+  KeyIndex edge_point(visible.size());  // (edge, crack) → index; point_of_edge_point maps it to a point
+  std::vector<int> point_of_edge_point;
   struct Segment {
     int a, b, crack;
   };
   std::vector<Segment> segments;
-  std::vector<Piece> pieces;
+  int piece_count = 0;
   std::vector<double> piece_area;
   std::vector<Eigen::Vector2d> piece_centroid;
   struct Footprint {
-    int piece;
+    int edge, triangle, piece;
     double t0, t1;
   };
-  std::unordered_map<std::uint64_t, std::vector<std::pair<int, Footprint>>> footprints;  // edge → (triangle, footprint)
+  std::vector<Footprint> footprints;
   std::vector<char> piece_on_border;
   double total_area = 0.0;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(INFINITY), hi = Eigen::Vector2d::Constant(-INFINITY);
   result.visible_triangle_corners.reserve(visible.size());
+  // Most triangles are uncut: one piece and three footprints each.
+  footprints.reserve(3 * visible.size() + 16);
+  piece_area.reserve(visible.size() + 16);
+  piece_centroid.reserve(visible.size() + 16);
+  piece_on_border.reserve(visible.size() + 16);
 
   std::vector<FaceSegment> face_segments;
+  std::vector<Piece> face_pieces, next;
+  Piece positive, negative;
+  Piece whole;
+  for (int i = 0; i < 3; ++i) whole.push_back(Bary::Unit(i));
   for (std::size_t vi = 0; vi < visible.size(); ++vi) {
     const BoundaryFace& face = boundary[static_cast<std::size_t>(visible[vi])];
     const auto tet_nodes = mesh.tets().row(face.tet);
@@ -248,6 +328,12 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       hi = hi.cwiseMax(corner[static_cast<std::size_t>(i)]);
     }
     result.visible_triangle_corners.push_back(corner);
+    // The mesh edge opposite each corner, and its parameter's origin (the lower-numbered node).
+    std::array<int, 3> edge_opposite{};
+    for (int i = 0; i < 3; ++i) {
+      edge_opposite[static_cast<std::size_t>(i)] =
+          edges.find(edge_key(face.nodes[static_cast<std::size_t>((i + 1) % 3)], face.nodes[static_cast<std::size_t>((i + 2) % 3)]));
+    }
     const double triangle_area = 0.5 * ((corner[1] - corner[0]).x() * (corner[2] - corner[0]).y() -
                                         (corner[1] - corner[0]).y() * (corner[2] - corner[0]).x());
     total_area += triangle_area;
@@ -256,7 +342,9 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
       return Eigen::Vector3d(cut.node_values[static_cast<std::size_t>(local[0])], cut.node_values[static_cast<std::size_t>(local[1])],
                              cut.node_values[static_cast<std::size_t>(local[2])]);
     };
-    const auto& tet_cuts = cuts_of_slot[static_cast<std::size_t>(slot_of_tet[static_cast<std::size_t>(face.tet)])];
+    const auto slot = static_cast<std::size_t>(slot_of_tet[static_cast<std::size_t>(face.tet)]);
+    const std::span<const std::pair<int, const CrackCut*>> tet_cuts(cut_refs.data() + cut_start[slot],
+                                                                    cut_refs.data() + cut_start[slot + 1]);
 
     // Crack traces: the zero segment of each cut's values on this triangle, clipped for a T.
     face_segments.clear();
@@ -277,13 +365,14 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
         Bary bary = Bary::Zero();
         bary[p] = 1.0 - t;
         bary[q] = t;
-        const std::uint64_t key = edge_key(node_a, node_b);
-        const auto [it, inserted] = edge_point.try_emplace(EdgeCrack{key, k}, static_cast<int>(points.size()));
-        if (inserted) {
+        const int edge = edge_opposite[static_cast<std::size_t>(3 - a - b)];
+        const int id = edge_point.insert((static_cast<std::uint64_t>(edge) + 1) << 32 | static_cast<std::uint32_t>(k));
+        if (id == static_cast<int>(point_of_edge_point.size())) {
+          point_of_edge_point.push_back(static_cast<int>(points.size()));
           points.push_back({corner[static_cast<std::size_t>(p)] + t * (corner[static_cast<std::size_t>(q)] - corner[static_cast<std::size_t>(p)]),
-                            edge_use[key] == 1});
+                            edge_use[static_cast<std::size_t>(edge)] == 1});
         }
-        s.point[static_cast<std::size_t>(found)] = it->second;
+        s.point[static_cast<std::size_t>(found)] = point_of_edge_point[static_cast<std::size_t>(id)];
         s.bary[static_cast<std::size_t>(found)] = bary;
         ++found;
       }
@@ -361,56 +450,67 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
     // clipping crack has cut before the T's own segment, which then splits only the pieces on its
     // arrival side. A piece straddling the clipping line (possible only where the clipping crack is
     // itself clipped away in this tet) is left whole: the T ends inside it like a free end.
-    std::vector<Piece> face_pieces{Piece{{Bary::UnitX(), Bary::UnitY(), Bary::UnitZ()}}};
-    std::stable_sort(face_segments.begin(), face_segments.end(), [](const FaceSegment& a, const FaceSegment& b) { return a.crack < b.crack; });
+    if (face_segments.empty()) {
+      // Uncut (most triangles): one piece, the triangle, on its three edges from end to end.
+      for (int i = 0; i < 3; ++i) footprints.push_back({edge_opposite[static_cast<std::size_t>(i)], static_cast<int>(vi), piece_count, 0.0, 1.0});
+      ++piece_count;
+      piece_area.push_back(triangle_area);
+      piece_centroid.push_back((corner[0] + corner[1] + corner[2]) / 3.0);
+      piece_on_border.push_back(0);
+      continue;
+    }
+    if (face_segments.size() > static_cast<std::size_t>(kMaxCracksPerTriangle)) {
+      throw NumericalFailure(name + ": " + std::to_string(face_segments.size()) + " cracks cross one visible face of " +
+                             mesh.tet_label(face.tet) + ", more than the " + std::to_string(kMaxCracksPerTriangle) +
+                             " the visible pattern handles in one triangle");
+    }
+    face_pieces.assign(1, whole);
     for (const FaceSegment& s : face_segments) {
       const double line_tolerance = kOnLine * s.line.cwiseAbs().maxCoeff();
       const double clip_tolerance = kOnLine * s.clip.cwiseAbs().maxCoeff();
-      std::vector<Piece> next;
-      next.reserve(face_pieces.size() + 1);
+      next.clear();
       for (const Piece& piece : face_pieces) {
         bool split_here = true;
         if (s.clipped) {
-          for (const Bary& v : piece.vertices) split_here &= v.dot(s.clip) >= -clip_tolerance;
+          for (int v = 0; v < piece.size; ++v) split_here &= piece.vertices[static_cast<std::size_t>(v)].dot(s.clip) >= -clip_tolerance;
         }
-        Piece positive, negative;
         if (split_here && split_piece(piece, s.line, line_tolerance, positive, negative)) {
-          next.push_back(std::move(positive));
-          next.push_back(std::move(negative));
+          next.push_back(positive);
+          next.push_back(negative);
         } else {
           next.push_back(piece);
         }
       }
-      face_pieces = std::move(next);
+      std::swap(face_pieces, next);
     }
     for (Piece& piece : face_pieces) {
       // Area and centroid (fan from the first vertex; pieces are convex).
       double area = 0.0;
       Eigen::Vector2d moment = Eigen::Vector2d::Zero();
       const Eigen::Vector2d p0 = position(piece.vertices[0]);
-      for (std::size_t i = 1; i + 1 < piece.vertices.size(); ++i) {
+      for (std::size_t i = 1; i + 1 < static_cast<std::size_t>(piece.size); ++i) {
         const Eigen::Vector2d p1 = position(piece.vertices[i]), p2 = position(piece.vertices[i + 1]);
         const double a = 0.5 * ((p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x());
         area += a;
         moment += a * (p0 + p1 + p2) / 3.0;
       }
       if (!(area > 0.0)) continue;
-      const int id = static_cast<int>(pieces.size());
+      const int id = piece_count;
       // Footprints on the triangle's edges: a piece edge lies on the edge opposite corner i when
       // both its ends have coordinate i exactly 0 (splitting keeps such zeros exact).
-      for (std::size_t e = 0; e < piece.vertices.size(); ++e) {
+      for (std::size_t e = 0; e < static_cast<std::size_t>(piece.size); ++e) {
         const Bary& u = piece.vertices[e];
-        const Bary& w = piece.vertices[(e + 1) % piece.vertices.size()];
+        const Bary& w = piece.vertices[(e + 1) % static_cast<std::size_t>(piece.size)];
         for (int i = 0; i < 3; ++i) {
           if (u[i] != 0.0 || w[i] != 0.0) continue;
           const int a = (i + 1) % 3, b = (i + 2) % 3;
           const int node_a = face.nodes[static_cast<std::size_t>(a)], node_b = face.nodes[static_cast<std::size_t>(b)];
           const int high = node_a < node_b ? b : a;  // parameter measured from the lower-numbered node
           const double t0 = std::min(u[high], w[high]), t1 = std::max(u[high], w[high]);
-          if (t1 - t0 > kOverlap) footprints[edge_key(node_a, node_b)].push_back({static_cast<int>(vi), Footprint{id, t0, t1}});
+          if (t1 - t0 > kOverlap) footprints.push_back({edge_opposite[static_cast<std::size_t>(i)], static_cast<int>(vi), id, t0, t1});
         }
       }
-      pieces.push_back(std::move(piece));
+      ++piece_count;
       piece_area.push_back(area);
       piece_centroid.push_back(moment / area);
       piece_on_border.push_back(0);
@@ -418,24 +518,28 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
   }
 
   // Pieces across a shared edge whose footprints overlap are one fragment; a footprint on an edge
-  // of the region makes its fragment touch the border. Edges are visited in key order.
-  UnionFind sets(pieces.size());
-  std::vector<std::uint64_t> edge_keys;
-  edge_keys.reserve(footprints.size());
-  for (const auto& entry : footprints) edge_keys.push_back(entry.first);
-  std::sort(edge_keys.begin(), edge_keys.end());
-  for (const std::uint64_t key : edge_keys) {
-    const auto& list = footprints[key];
-    if (edge_use[key] == 1) {
-      for (const auto& [triangle, fp] : list) piece_on_border[static_cast<std::size_t>(fp.piece)] = 1;
+  // of the region makes its fragment touch the border.
+  UnionFind sets(static_cast<std::size_t>(piece_count));
+  // Bucketed by edge (a counting sort: pieces stay in order within an edge).
+  std::vector<int> first(static_cast<std::size_t>(edges.count()) + 1, 0);
+  for (const Footprint& f : footprints) ++first[static_cast<std::size_t>(f.edge) + 1];
+  for (std::size_t e = 1; e < first.size(); ++e) first[e] += first[e - 1];
+  std::vector<int> order(footprints.size());
+  {
+    std::vector<int> fill(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < footprints.size(); ++i) order[static_cast<std::size_t>(fill[static_cast<std::size_t>(footprints[i].edge)]++)] = static_cast<int>(i);
+  }
+  for (std::size_t e = 0; e + 1 < first.size(); ++e) {
+    const int begin = first[e], end = first[e + 1];
+    if (edge_use[e] == 1) {
+      for (int i = begin; i < end; ++i) piece_on_border[static_cast<std::size_t>(footprints[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])].piece)] = 1;
       continue;
     }
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      for (std::size_t j = i + 1; j < list.size(); ++j) {
-        if (list[i].first == list[j].first) continue;
-        const Footprint& a = list[i].second;
-        const Footprint& b = list[j].second;
-        if (std::min(a.t1, b.t1) - std::max(a.t0, b.t0) > kOverlap) sets.unite(a.piece, b.piece);
+    for (int i = begin; i < end; ++i) {
+      for (int j = i + 1; j < end; ++j) {
+        const Footprint& a = footprints[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])];
+        const Footprint& b = footprints[static_cast<std::size_t>(order[static_cast<std::size_t>(j)])];
+        if (a.triangle != b.triangle && std::min(a.t1, b.t1) - std::max(a.t0, b.t0) > kOverlap) sets.unite(a.piece, b.piece);
       }
     }
   }
@@ -447,10 +551,10 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
   builder.set_crack_width(options.line_width_px * metres_per_pixel);
   result.stats_options.probe_min = PatternStatsOptions{}.probe_min * metres_per_pixel;
 
-  std::vector<int> fragment_of_root(pieces.size(), -1);
+  std::vector<int> fragment_of_root(static_cast<std::size_t>(piece_count), -1);
   std::vector<Fragment> fragments;
   std::vector<Eigen::Vector2d> moments;
-  for (std::size_t p = 0; p < pieces.size(); ++p) {
+  for (std::size_t p = 0; p < static_cast<std::size_t>(piece_count); ++p) {
     const auto root = static_cast<std::size_t>(sets.find(static_cast<int>(p)));
     if (fragment_of_root[root] < 0) {
       fragment_of_root[root] = static_cast<int>(fragments.size());

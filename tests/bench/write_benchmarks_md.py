@@ -28,6 +28,11 @@ SECTION_NOTES = {
                           "the 1 × 1 × 0.05 m tile (corner supports), 1 = a unit icosphere (polar cap held), 2 = the "
                           "tile bent to a 1 m radius (ends held). Targets (issue 9): ≤ 1 s at 7K tets, ≤ 1.7 s at "
                           "24K, min dihedral ≥ 10°.",
+    "bench_visible_pattern": "The visible crack pattern (issue 10) of the CGAL tile cut by a random hierarchical "
+                             "pattern of plane cracks (args: tets, cracks; 7K / 0 is the face's fixed cost, 7K / 5 the issue's 7K "
+                             "simulation case): extract_visible_pattern alone (traces, "
+                             "junctions, exact fragments on the top face), then with compute_pattern_stats (what a "
+                             "fit trial adds to a simulation), and the 1024 px line drawing.",
     "bench_msh": "gmsh MSH 4.1 write and read through the gmsh API.",
     "bench_fem": "FEM kernels on the CGAL tile (corner supports, 10 kN on a 5 cm centre patch). Targets at 24K "
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "

@@ -23,12 +23,17 @@ struct PlaneCrack {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
   Eigen::Vector3d point = Eigen::Vector3d::Zero();
   /// Earlier cracks (indices) it ends on, T-junction style: it exists only on the side of each
-  /// that `point` is on. In a tet that such a crack cuts, the cut is clipped by it (CrackCut::
-  /// clipped_by, the first such crack); elsewhere a tet is kept when its centroid is on that side.
+  /// that `point` is on. In a tet that such a crack cuts, the cut is clipped by it when its
+  /// polygon reaches the far side (CrackCut::clipped_by; at most one: see make_cut); elsewhere a
+  /// tet is kept when its polygon reaches that side.
   std::vector<int> stop_on;
   /// When set, only tets whose centroid satisfies it (a partial crack: it ends where the region
   /// does).
   std::function<bool(const Eigen::Vector3d&)> region;
+  /// When set, added to S (metres): a curved crack, like the simulation's noisy planes. The
+  /// stop_on sides of later cracks are still judged by this crack's plane, so give an offset only
+  /// to cracks nothing stops on.
+  std::function<double(const Eigen::Vector3d&)> offset;
 };
 
 /// Mesh scale for the snapping rule of CrackCut (values within 1e-6·h of zero move off it): the
@@ -37,14 +42,16 @@ inline double crack_snap_length(const TetMesh& mesh) {
   return std::cbrt(6.0 * mesh.total_volume() / std::max(1, mesh.tet_count()));
 }
 
-/// S(x) of `crack`'s plane at the nodes of tet `t`, snapped off zero as the simulation does.
+/// S(x) = n̂·(x − point) (+ offset(x)) at the nodes of tet `t`, snapped off zero as the
+/// simulation does.
 inline std::array<double, 4> plane_node_values(const TetMesh& mesh, int t, const Eigen::Vector3d& unit_normal,
-                                               const Eigen::Vector3d& point) {
+                                               const Eigen::Vector3d& point,
+                                               const std::function<double(const Eigen::Vector3d&)>& offset = {}) {
   const double snap = 1e-6 * crack_snap_length(mesh);
   std::array<double, 4> v{};
   for (int i = 0; i < 4; ++i) {
     const Eigen::Vector3d x = mesh.nodes().row(mesh.tets()(t, i)).transpose();
-    double s = unit_normal.dot(x - point);
+    double s = unit_normal.dot(x - point) + (offset ? offset(x) : 0.0);
     if (std::abs(s) < snap) s = s < 0.0 ? -snap : snap;
     v[static_cast<std::size_t>(i)] = s;
   }
@@ -80,23 +87,50 @@ inline int add_plane_crack(const TetMesh& mesh, std::vector<CrackSurface>& crack
   // The cut of tet t, or a cut with tet = −1 when the crack may not be there.
   auto make_cut = [&](int t) {
     CrackCut cut;
-    cut.node_values = plane_node_values(mesh, t, n, spec.point);
+    cut.node_values = plane_node_values(mesh, t, n, spec.point, spec.offset);
     const auto [lo, hi] = std::minmax_element(cut.node_values.begin(), cut.node_values.end());
     const Eigen::Vector3d centroid = mesh.centroid(t);
     if (!(*lo < 0.0 && *hi > 0.0) || (spec.region && !spec.region(centroid))) return cut;
-    const CrackCut* clipping = nullptr;
+    // Stop cracks that cut this tet: the cut is clipped by the one the polygon runs into (at a
+    // cell corner two may cut the tet, and the polygon usually crosses only one of them; when it
+    // crosses several, by the one whose clipped polygon respects the others, else the first).
+    // Stop cracks that do not cut it: the polygon must reach the arrival side.
+    const std::vector<Eigen::Vector3d> polygon = crack_polygon(nodes_of(t), cut);
+    auto outside = [&](const std::vector<Eigen::Vector3d>& poly, std::size_t s) {
+      const CrackSurface& j = cracks[static_cast<std::size_t>(spec.stop_on[s])];
+      const double tolerance = 1e-9 * crack_snap_length(mesh);
+      return std::any_of(poly.begin(), poly.end(), [&](const Eigen::Vector3d& x) { return side[s] * j.normal.dot(x - j.origin) < -tolerance; });
+    };
+    std::vector<std::size_t> crossed;
     for (std::size_t s = 0; s < spec.stop_on.size(); ++s) {
       const CrackSurface& j = cracks[static_cast<std::size_t>(spec.stop_on[s])];
-      const int c = cut_index[s][static_cast<std::size_t>(t)];
-      if (c >= 0 && !clipping) {
-        clipping = &j.cuts[static_cast<std::size_t>(c)];
-        cut.clipped_by = spec.stop_on[s];
-        cut.clip_side = side[s] > 0.0 ? 1 : -1;
-      } else if (side[s] * j.normal.dot(centroid - j.origin) < 0.0) {
-        return cut;
+      if (cut_index[s][static_cast<std::size_t>(t)] < 0) {
+        // Not cut by j: beyond the cell when the whole polygon is past j's plane. A polygon
+        // straddling the plane is where j does not reach (its own end, at a cell corner), and
+        // the centroid's side would open a gap there.
+        const bool past = std::all_of(polygon.begin(), polygon.end(), [&](const Eigen::Vector3d& x) { return side[s] * j.normal.dot(x - j.origin) < 0.0; });
+        if (past) return cut;
+      } else if (outside(polygon, s)) {
+        crossed.push_back(s);
       }
     }
-    if (clipping && crack_polygon(nodes_of(t), cut, clipping).size() < 3) return cut;
+    if (!crossed.empty()) {
+      std::size_t chosen = crossed.front();
+      for (const std::size_t s : crossed) {
+        CrackCut trial = cut;
+        trial.clipped_by = spec.stop_on[s];
+        trial.clip_side = side[s] > 0.0 ? 1 : -1;
+        const auto clipped = crack_polygon(nodes_of(t), trial, &cracks[static_cast<std::size_t>(spec.stop_on[s])].cuts[static_cast<std::size_t>(cut_index[s][static_cast<std::size_t>(t)])]);
+        if (std::none_of(crossed.begin(), crossed.end(), [&](std::size_t o) { return o != s && outside(clipped, o); })) {
+          chosen = s;
+          break;
+        }
+      }
+      cut.clipped_by = spec.stop_on[chosen];
+      cut.clip_side = side[chosen] > 0.0 ? 1 : -1;
+      const CrackSurface& j = cracks[static_cast<std::size_t>(cut.clipped_by)];
+      if (crack_polygon(nodes_of(t), cut, &j.cuts[static_cast<std::size_t>(cut_index[chosen][static_cast<std::size_t>(t)])]).size() < 3) return cut;
+    }
     cut.tet = t;
     return cut;
   };

@@ -5,12 +5,16 @@
 #include "fissure/exemplar/similarity.hpp"
 #include "fissure/fracture/pattern_image.hpp"
 #include "fissure/mesh/structured_box.hpp"
+#include "fissure/mesh/tetrahedralize.hpp"
+#include "fissure/mesh/tile.hpp"
 
+#include "../support/test_shapes.hpp"
 #include "../support/test_support.hpp"
 #include "synthetic_cracks.hpp"
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <iostream>
 #include <numbers>
 
@@ -266,10 +270,11 @@ std::pair<PatternStats, PatternStats> compare_with_drawing(const TetMesh& mesh, 
   const VisiblePattern p = extract_visible_pattern(mesh, cracks, static_cast<int>(cracks.size()), Eigen::Vector3d::UnitZ());
   const PatternStats geometric = compute_pattern_stats(p.graph, p.stats_options);
   const PatternImage image = render_pattern_image(p);
-  EXPECT_TRUE(image.roi.pixels.empty());  // a tile's top face fills the frame
   const auto dir = test::fresh_temp_dir(name);
-  write_pattern_image(dir / "pattern.png", image);
-  const ExemplarAnalysis seen = analyze_exemplar(dir / "pattern.png");
+  write_pattern_image(dir / "pattern.png", image, dir / "roi.png");
+  ExemplarAnalysisOptions options;
+  if (!image.roi.pixels.empty()) options.image.roi_path = dir / "roi.png";
+  const ExemplarAnalysis seen = analyze_exemplar(dir / "pattern.png", options);
   EXPECT_EQ(seen.stats.fragment_count, geometric.fragment_count);
   EXPECT_EQ(seen.stats.junction_count, geometric.junction_count);
   EXPECT_EQ(seen.stats.t_count, geometric.t_count);
@@ -293,6 +298,7 @@ TEST(VisiblePattern, TheDrawingAnalysedAsAnExemplarGivesTheSameStatistics) {
   EXPECT_EQ(geometric.x_count, 3);
   const VisiblePattern p = extract_visible_pattern(b.mesh, b.cracks, static_cast<int>(b.cracks.size()), Eigen::Vector3d::UnitZ());
   const PatternImage image = render_pattern_image(p);
+  EXPECT_TRUE(image.roi.pixels.empty());  // a tile's top face fills the frame
   EXPECT_EQ(image.drawing.width, 1024);
   EXPECT_EQ(image.drawing.height, 717);  // 0.7 × 1024 = 716.8
 }
@@ -305,6 +311,111 @@ TEST(VisiblePattern, ARandomHierarchicalPatternDrawnAndAnalysedAgrees) {
   const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-hierarchical");
   EXPECT_EQ(geometric.fragment_count, 21);
   EXPECT_GT(geometric.t_count, 10);
+}
+
+// Curved cracks, like the simulation's noisy planes: wavy full cracks (amplitude 8 mm, wavelength
+// 0.25 m, so the traces bend across elements of ≈ 2 cm) crossing in a 4 × 3 grid: 20 fragments,
+// 12 X junctions, traces that are polylines of element-sized segments.
+TEST(VisiblePattern, CurvedCracksDrawnAndAnalysedAgree) {
+  const TetMesh mesh = make_structured_box({-0.5, -0.5, 0.0}, {1.0, 1.0, 0.05}, 45, 45, 2);
+  std::vector<CrackSurface> cracks;
+  const double k = 2.0 * std::numbers::pi / 0.25;
+  for (const double x : {-0.3117, -0.0613, 0.1891, 0.3713}) {
+    test::PlaneCrack c{Eigen::Vector3d::UnitX(), {x, 0.0, 0.0}, {}, {}, {}};
+    c.offset = [k](const Eigen::Vector3d& p) { return 0.008 * std::sin(k * p.y() + 1.0); };
+    add_plane_crack(mesh, cracks, c);
+  }
+  for (const double y : {-0.2219, 0.0517, 0.2773}) {
+    test::PlaneCrack c{Eigen::Vector3d::UnitY(), {0.0, y, 0.0}, {}, {}, {}};
+    c.offset = [k](const Eigen::Vector3d& p) { return 0.008 * std::cos(k * p.x()); };
+    add_plane_crack(mesh, cracks, c);
+  }
+  const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-curved");
+  EXPECT_EQ(geometric.fragment_count, 20);
+  EXPECT_EQ(geometric.x_count, 12);
+}
+
+// A visible face that does not fill its frame (the top of an L-shaped prism, 3 of its 4 m²): the
+// drawing comes with a mask of the face, and the analysis inside that mask agrees the same way.
+TEST(VisiblePattern, AFaceThatDoesNotFillItsFrameIsAnalysedInsideItsMask) {
+  TetrahedralizeOptions options;
+  options.target_tets = 7000;
+  const TetMesh mesh = tetrahedralize(test::l_prism(), options);
+  std::vector<CrackSurface> cracks;
+  test::add_hierarchical_cracks(mesh, cracks, 12, 3, {0.0, 0.0}, {2.0, 2.0});
+  const VisiblePattern p = extract_visible_pattern(mesh, cracks, static_cast<int>(cracks.size()), Eigen::Vector3d::UnitZ());
+  EXPECT_NEAR(p.graph.total_area, 3.0, kExact);
+  const PatternImage image = render_pattern_image(p);
+  ASSERT_EQ(image.roi.pixels.size(), image.drawing.pixels.size());
+  // The mask covers three quarters of the square image (to the pixels along the notch's edges).
+  const auto inside = std::count(image.roi.pixels.begin(), image.roi.pixels.end(), 255);
+  EXPECT_NEAR(static_cast<double>(inside) / static_cast<double>(image.roi.pixels.size()), 0.75, 2.0 / 1024);
+  const auto [geometric, seen] = compare_with_drawing(mesh, cracks, "visible-pattern-l-prism");
+  EXPECT_GE(geometric.fragment_count, 8);
+}
+
+// On CGAL's unstructured tile (≈ 7K tets): the traces end on the cracks they stop on, whatever
+// the triangles, so every cell of the hierarchical pattern is a fragment.
+TEST(VisiblePattern, OnAnUnstructuredTileEveryCellIsAFragment) {
+  TetrahedralizeOptions options;
+  options.target_tets = 7000;
+  const TetMesh mesh = tetrahedralize(make_tile_surface({1.0, 1.0, 0.05}), options);
+  // Seeds are independent patterns; 50 cracks put cell corners within an element of other cracks.
+  for (const std::uint64_t seed : {1, 2, 3, 4, 5}) {
+    std::vector<CrackSurface> cracks;
+    test::add_hierarchical_cracks(mesh, cracks, 50, seed, {-0.5, -0.5}, {0.5, 0.5});
+    const VisiblePattern p = extract_visible_pattern(mesh, cracks, 50, Eigen::Vector3d::UnitZ());
+    const PlanarCrackGraph& g = p.graph;
+    double sum = 0.0;
+    for (const Fragment& f : g.fragments) sum += f.area;
+    EXPECT_NEAR(sum, 1.0, kExact) << "seed " << seed;
+    EXPECT_NEAR(g.total_area, 1.0, kExact);
+    for (const CrackNode& n : g.nodes) {
+      EXPECT_NE(n.kind, CrackNode::Kind::End) << "seed " << seed << ": free end at " << n.position.transpose();
+    }
+    EXPECT_EQ(g.fragments.size(), 51u) << "seed " << seed;
+    // Deterministic: the same graph again, bit for bit.
+    const VisiblePattern again = extract_visible_pattern(mesh, cracks, 50, Eigen::Vector3d::UnitZ());
+    ASSERT_EQ(again.graph.cracks.size(), g.cracks.size());
+    for (std::size_t c = 0; c < g.cracks.size(); ++c) EXPECT_EQ(again.graph.cracks[c].points, g.cracks[c].points);
+    ASSERT_EQ(again.graph.fragments.size(), g.fragments.size());
+    for (std::size_t f = 0; f < g.fragments.size(); ++f) EXPECT_EQ(again.graph.fragments[f].area, g.fragments[f].area);
+  }
+}
+
+// Every refusal names its culprit; nothing is half-built.
+TEST(VisiblePattern, BadInputIsRefusedNamingTheCulprit) {
+  const TetMesh mesh = unit_tile(4);
+  std::vector<CrackSurface> cracks = full_cracks_a_and_b(mesh);
+  auto message = [&](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 2, Eigen::Vector3d::Zero()); }).find("view direction"), std::string::npos);
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 3, up); }).find("crack count 3"), std::string::npos);
+  VisiblePatternOptions wide;
+  wide.max_angle_deg = 90.0;
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, cracks, 2, up, wide); }).find("max_angle_deg"), std::string::npos);
+  std::vector<CrackSurface> broken = cracks;
+  broken[1].cuts[0].node_values[2] = NAN;
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("crack 1 has a non-finite value in tet "), std::string::npos);
+  broken = cracks;
+  broken[1].cuts[0].tet = mesh.tet_count();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("crack 1 cuts tet index"), std::string::npos);
+  // A clip by a crack that does not cut the tet (checked in the tets that own a visible face).
+  broken = cracks;
+  for (CrackCut& cut : broken[0].cuts) cut.clipped_by = 1;
+  broken[1].cuts.clear();
+  EXPECT_NE(message([&] { extract_visible_pattern(mesh, broken, 2, up); }).find("which that crack does not cut"), std::string::npos);
+  PatternImageOptions tiny;
+  tiny.long_side_px = 4;
+  const VisiblePattern p = extract_visible_pattern(mesh, cracks, 2, up);
+  EXPECT_NE(message([&] { render_pattern_image(p, tiny); }).find("long_side_px 4"), std::string::npos);
 }
 
 }  // namespace

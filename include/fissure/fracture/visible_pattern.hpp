@@ -41,7 +41,7 @@ struct VisiblePatternOptions {
   /// its crack lines, pixels (render_pattern_image draws at these by default). They set the
   /// graph's crack width and the junction probe of stats_options in metres, so the geometric
   /// statistics probe junction directions as far out as the analysis of the drawing does.
-  int reference_long_side_px = 1024;
+  int reference_long_side_px = 1024;  ///< ≥ kMinImageSide
   double line_width_px = 3.0;
 
   /// Readable problems naming the field; empty when valid.
@@ -87,7 +87,8 @@ struct VisiblePattern {
 /// vector; normalised). Throws InvalidInput for invalid options, a zero or non-finite `up`, a
 /// crack_count outside [0, cracks.size()], a cut naming a tet outside the mesh or with
 /// non-finite values, or a clipped cut whose clipping crack does not cut that tet (each naming
-/// the crack and the tet). O(visible triangles + Σ cuts + segments), no allocation per cut.
+/// the crack and the tet). O(visible triangles + Σ cuts): milliseconds for tens of cracks at 24K
+/// tets (bench_visible_pattern, docs/BENCHMARKS.md).
 VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int crack_count,
                                        const Eigen::Vector3d& up, const VisiblePatternOptions& options = {});
 
