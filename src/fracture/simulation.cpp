@@ -333,12 +333,28 @@ private:
         CrackCut cut = make_cut(k, surface, u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
         if (!earlier.empty()) {
-          // Crack meets crack: end on the earliest crack cutting u, on the side it arrived from
-          // (the side holding the middle of this crack's trace on the shared face).
-          const auto [j, j_cut] = earlier.front();
-          const CrackCut& other = m_cracks[static_cast<std::size_t>(j)].cuts[static_cast<std::size_t>(j_cut)];
+          // Crack meets crack: end on the side it arrived from (the side holding the middle of
+          // its trace on the shared face) of the crack it runs into first. Where several earlier
+          // cracks cut u (a corner), that is the one leaving the least of its polygon on the
+          // arrival side: clipping by the earliest one left gaps before a nearer crack (on the
+          // demo tile, interior free ends on the visible face 160 → 136).
+          const auto nodes_u = tet_nodes(u);
+          int j = -1, side = 0;
+          double least = kInf;
+          for (const auto& [i, i_cut] : earlier) {
+            const CrackCut& other = m_cracks[static_cast<std::size_t>(i)].cuts[static_cast<std::size_t>(i_cut)];
+            CrackCut trial = cut;
+            trial.clipped_by = i;
+            trial.clip_side = arrival_side(tet, f, u, k, surface, other);
+            const double remaining = detail::polygon_area(crack_polygon(nodes_u, trial, &other));
+            if (remaining < least) {
+              least = remaining;
+              j = i;
+              side = trial.clip_side;
+            }
+          }
           cut.clipped_by = j;
-          cut.clip_side = arrival_side(tet, f, u, k, surface, other);
+          cut.clip_side = side;
           m_flood_stamp[static_cast<std::size_t>(u)] = k;
           cuts.push_back(cut);
           stopped_on.push_back(j);
