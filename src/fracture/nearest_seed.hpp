@@ -35,11 +35,12 @@ public:
     using Entry = std::pair<double, int>;  // (distance, tet); ties by tet index: deterministic
     std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
     auto offer = [&](int tet, int seed) {
+      const auto t = static_cast<std::size_t>(tet);
+      if (m_stamp[t] == m_current + kSettled) return;  // final: no distance to compute
+      if (m_stamp[t] == m_current && m_seed[t] == seed) return;  // already offered this seed
       const double d = distance(tet, seed);
       if (!(d < max_distance)) return;
-      const auto t = static_cast<std::size_t>(tet);
       if (m_stamp[t] == m_current && !(d < m_distance[t])) return;
-      if (m_stamp[t] == m_current + kSettled) return;
       m_stamp[t] = m_current;
       m_distance[t] = d;
       m_seed[t] = seed;

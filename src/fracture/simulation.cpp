@@ -69,8 +69,7 @@ public:
     m_node_stamp.assign(static_cast<std::size_t>(m_mesh.node_count()), -1);
     m_flood_stamp.assign(n, -1);
     m_snap = 1e-6 * body.mean_edge_length();
-    m_near_crack.assign(n, kInf);
-    m_join_distance = kJoinEdges * body.mean_edge_length();
+    m_near_crack.assign(n, kFar);
     m_gc = critical_energy_release_rate(params);
     m_flaw = flaw_size(params);
     m_directional = resolve_directional();
@@ -367,11 +366,11 @@ private:
         // earlier crack a few element sizes away: its free surface concentrates stress at the
         // approaching tip, and a crack that stops just short of another reads as a gap in the
         // drawing, not a T. Running alongside a crack (no closer) does not count.
-        const double near_u = m_near_crack[static_cast<std::size_t>(u)];
-        const bool closing_in = near_u < m_join_distance && (joining || near_u < m_near_crack[static_cast<std::size_t>(tet)]);
+        const int near_u = m_near_crack[static_cast<std::size_t>(u)];
+        const bool closing_in = near_u <= kJoinHops && (joining || near_u < m_near_crack[static_cast<std::size_t>(tet)]);
         if (gain < 0.0 && budget + gain < 0.0 && !closing_in) continue;
         // Beyond the join distance a joining flood is an ordinary one again.
-        const bool still_joining = joining && near_u < m_join_distance;
+        const bool still_joining = joining && near_u <= kJoinHops;
         budget += gain;
         area += a_e;
         m_flood_stamp[static_cast<std::size_t>(u)] = k;
@@ -404,7 +403,7 @@ private:
     }
     m_cracks.push_back(std::move(crack));
     relax(polygons, normals, t);
-    record_crack_distances(polygons, normals);
+    record_crack_hops();
   }
 
   const CrackCut& cut_of(int crack, int tet) const {
@@ -482,26 +481,31 @@ private:
     }
   }
 
-  // The distance from every tet within the join distance of the new crack to it, kept as the
-  // minimum over all cracks so far (for the join rule of the flood).
-  void record_crack_distances(const std::vector<std::vector<Eigen::Vector3d>>& polygons,
-                              const std::vector<Eigen::Vector3d>& normals) {
+  // Tet hops from every tet within kJoinHops of the new crack to it, kept as the minimum over
+  // all cracks so far (for the join rule of the flood). Hops through face adjacency, not
+  // distances: a hop is about one element size, and a breadth-first pass over the few tets around
+  // a crack costs a fraction of the polygon distances relaxation needs.
+  void record_crack_hops() {
     const auto& cuts = m_cracks.back().cuts;
-    std::vector<std::pair<int, int>> seeds;
-    seeds.reserve(cuts.size());
-    for (std::size_t i = 0; i < cuts.size(); ++i) seeds.emplace_back(cuts[i].tet, static_cast<int>(i));
-    m_propagation.run(
-        seeds,
-        [&](int tet, int i) {
-          return detail::polygon_distance(m_mesh.centroid(tet), polygons[static_cast<std::size_t>(i)],
-                                          normals[static_cast<std::size_t>(i)]);
-        },
-        m_join_distance);
-    for (int tet : m_propagation.reached()) {
-      double& d = m_near_crack[static_cast<std::size_t>(tet)];
-      d = std::min(d, m_propagation.distance_of(tet));
+    m_hop_frontier.clear();
+    for (const CrackCut& c : cuts) {
+      m_near_crack[static_cast<std::size_t>(c.tet)] = 0;
+      m_hop_frontier.push_back(c.tet);
+    }
+    for (int hop = 1; hop <= kJoinHops && !m_hop_frontier.empty(); ++hop) {
+      m_hop_next.clear();
+      for (int tet : m_hop_frontier) {
+        for (int f = 0; f < 4; ++f) {
+          const int u = m_mesh.neighbours()(tet, f);
+          if (u < 0 || m_near_crack[static_cast<std::size_t>(u)] <= hop) continue;
+          m_near_crack[static_cast<std::size_t>(u)] = static_cast<std::uint8_t>(hop);
+          m_hop_next.push_back(u);
+        }
+      }
+      std::swap(m_hop_frontier, m_hop_next);
     }
   }
+
 
   const FractureBody& m_body;
   const TetMesh& m_mesh;
@@ -518,10 +522,12 @@ private:
   std::vector<double> m_node_value;
   std::vector<int> m_node_stamp;
   std::vector<int> m_flood_stamp;
-  std::vector<double> m_near_crack;  // distance to the nearest earlier crack, within m_join_distance
-  // A tip this many mean edge lengths from an earlier crack runs on to it whatever its budget.
-  static constexpr double kJoinEdges = 3.0;
-  double m_join_distance = 0.0;
+  // Tet hops to the nearest earlier crack, up to kJoinHops (kFar beyond).
+  std::vector<std::uint8_t> m_near_crack;
+  std::vector<int> m_hop_frontier, m_hop_next;
+  // A tip this many tets from an earlier crack, and closing in, runs on to it whatever its budget.
+  static constexpr int kJoinHops = 3;
+  static constexpr std::uint8_t kFar = 255;
   std::vector<CrackSurface> m_cracks;
   double m_snap = 0.0, m_gc = 0.0, m_flaw = 0.0;
   bool m_directional = true;
