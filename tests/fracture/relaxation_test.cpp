@@ -65,7 +65,10 @@ TEST(RelaxElementStress, IsotropicRemovesAtMostTheLargestTension) {
   s << 5e6, 2e6, -1e6, 0, 0, 0;
   const Voigt r = relax_element_stress(s, 8e6, false, Eigen::Vector3d::Zero());
   EXPECT_NEAR(max_principal_stress(r), 0.0, slack(s));
-  EXPECT_DOUBLE_EQ(r(1), -3e6);  // every direction loses the same 5 MPa (Eq. 4)
+  // Every direction loses the same 5 MPa (Eq. 4), so σ_yy goes from 2 MPa tension to 3 MPa
+  // compression: the clamp guards λ_max, the stress that opens cracks, not the lesser principal
+  // stresses (reading b of paper-gaps §4 applied to Eq. 4's single amount).
+  EXPECT_DOUBLE_EQ(r(1), -3e6);
   Voigt c;
   c << -5e6, -2e6, -1e6, 1e5, 0, 0;  // all compressive: untouched
   EXPECT_EQ(relax_element_stress(c, 8e6, false, Eigen::Vector3d::Zero()), c);
