@@ -27,7 +27,11 @@ std::vector<ParameterInfo> build_table() {
       {"youngs_modulus", "--E", "Pa", 1e6, 1e12, false, false, d.youngs_modulus,
        "Young's modulus E (plaster 1e10, concrete 3e10, glass 7e10, porcelain tile 6e10)",
        "Table 2 (IN); soft rubber 1e6 to diamond 1.2e12"},
-      {"poisson_ratio", "--nu", "", 0.0, 0.5, false, true, d.poisson_ratio,
+      // Closed at 0.49, not open at 0.5: the FEM's own range [0, 0.5) admits ν = 0.5 − 1e-7, whose
+      // stiffness is too ill-conditioned to solve (λ/μ ~ 1e7), so "ν at the end of its range"
+      // failed the stability test; 0.49 (λ/μ = 49) solves to a residual ≤ 1e-10 and holds every
+      // brittle solid (glass 0.2, asphalt 0.35, drying clay 0.3–0.45).
+      {"poisson_ratio", "--nu", "", 0.0, 0.49, false, false, d.poisson_ratio,
        "Poisson's ratio nu; linear tets lock as nu approaches 0.5 (docs/architecture.md)", "Table 2 (IN)"},
       {"density", "--rho", "kg/m^3", 1.0, 1e5, false, false, d.density,
        "Mass density rho (plaster 1200, concrete 2400, glass 2500); sets the body mass that l scales",

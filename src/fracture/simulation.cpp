@@ -462,21 +462,16 @@ private:
     for (int tet : m_propagation.reached()) {
       const double phi = relaxation_kernel(m_propagation.distance_of(tet), radius);
       if (phi <= 0.0) continue;
-      Voigt s = stress_at(tet, t);
+      Eigen::Vector3d d = Eigen::Vector3d::Zero();
       if (m_directional) {
         // d: orthogonal to the nearest surface normal and to the crack's path along the
         // surface, i.e. the crack normal projected on the tangent plane (paper §5.2).
         const Eigen::Vector3d n_s = m_body.surface_normals().row(tet).transpose();
         const Eigen::Vector3d& c = normals[static_cast<std::size_t>(m_propagation.seed_of(tet))];
-        Eigen::Vector3d d = c - c.dot(n_s) * n_s;
+        d = c - c.dot(n_s) * n_s;
         d = d.norm() > 0.1 ? Eigen::Vector3d(d.normalized()) : c;  // a crack parallel to the surface
-        const double amount = std::min(rate * phi, std::max(0.0, normal_component(s, d)));
-        s -= amount * outer(d);
-      } else {
-        const double amount = std::min(rate * phi, std::max(0.0, max_principal_stress(s)));
-        s.head<3>().array() -= amount;
       }
-      m_stress[static_cast<std::size_t>(tet)] = s;
+      m_stress[static_cast<std::size_t>(tet)] = relax_element_stress(stress_at(tet, t), rate * phi, m_directional, d);
       m_base_time[static_cast<std::size_t>(tet)] = t;
     }
   }
@@ -565,8 +560,22 @@ void check_inputs(const FractureBody& body, const FractureParams& params, const 
 
 double relaxation_kernel(double distance, double radius) {
   if (!(radius > 0.0) || !(std::abs(distance) < radius)) return 0.0;
-  const double q = 1.0 - (distance * distance) / (radius * radius);
+  // (d/r)², not d²/r²: for r below ~1e-154 (the table admits any r > 0) r² underflows to 0 and
+  // d²/r² is 0/0 = NaN at d = 0, which the relaxation would spread into every stress it touches.
+  const double u = distance / radius;
+  const double q = 1.0 - u * u;
   return q * q * q;
+}
+
+Eigen::Matrix<double, 6, 1> relax_element_stress(const Eigen::Matrix<double, 6, 1>& stress, double amount,
+                                                 bool directional, const Eigen::Vector3d& direction) {
+  Voigt s = stress;
+  if (directional) {
+    s -= std::min(amount, std::max(0.0, normal_component(s, direction))) * outer(direction);
+  } else {
+    s.head<3>().array() -= std::min(amount, std::max(0.0, max_principal_stress(s)));
+  }
+  return s;
 }
 
 double critical_energy_release_rate(const FractureParams& params) {

@@ -137,7 +137,7 @@ TEST(FractureParams, ProblemsNameTheKeyOrFlagAndTheRange) {
   p.relax_radius = -1.0;
   p.poisson_ratio = 0.62;
   ASSERT_EQ(p.problems().size(), 2u);
-  EXPECT_EQ(p.problems()[0], "poisson_ratio 0.62 is outside [0, 0.5)");
+  EXPECT_EQ(p.problems()[0], "poisson_ratio 0.62 is outside [0, 0.49]");
   EXPECT_EQ(p.problems()[1], "relax_radius -1 is outside (0, 100] m");
   EXPECT_EQ(p.problems(true)[1], "--relax-radius -1 is outside (0, 100] m");
   try {
@@ -145,7 +145,7 @@ TEST(FractureParams, ProblemsNameTheKeyOrFlagAndTheRange) {
     ADD_FAILURE() << "accepted";
   } catch (const InvalidInput& e) {
     EXPECT_STREQ(e.what(),
-                 "fracture parameters: poisson_ratio 0.62 is outside [0, 0.5); relax_radius -1 is outside (0, 100] m");
+                 "fracture parameters: poisson_ratio 0.62 is outside [0, 0.49]; relax_radius -1 is outside (0, 100] m");
   }
 }
 

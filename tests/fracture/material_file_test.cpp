@@ -148,7 +148,7 @@ TEST(MaterialFile, OutOfRangeValuesNameKeyAndRange) {
   j["parameters"]["poisson_ratio"] = 0.62;
   j["parameters"]["load_factor"] = 31;
   EXPECT_EQ(io_error_of(j.dump()),
-            "InvalidInput: slate.json: material \"slate\": parameters.poisson_ratio 0.62 is outside [0, 0.5); "
+            "InvalidInput: slate.json: material \"slate\": parameters.poisson_ratio 0.62 is outside [0, 0.49]; "
             "parameters.relax_radius -1 is outside (0, 100] m; parameters.load_factor 31 is outside [0, 30]");
   // An infinity arrives as a huge exponent: refused by the parser, one line.
   std::string text = valid_json().dump();

@@ -74,7 +74,7 @@ struct FractureParams {
 /// as noise_amplitude_1, noise_frequency_1, …, noise_amplitude_4, noise_frequency_4. Names are
 /// the JSON keys, flags the CLI flags. The relaxation choice is not a number: see
 /// parse_relaxation_choice. Every range is closed and finite except where a bound is excluded
-/// (ν < 0.5, r_relax > 0), so "each parameter at both ends of its range" is a testable set.
+/// (r_relax > 0), so "each parameter at both ends of its range" is a testable set.
 const std::vector<ParameterInfo>& fracture_parameter_table();
 
 /// The row of the table whose name (JSON key) is `name`, or -1.

@@ -48,6 +48,16 @@ FractureResult simulate_fracture(const FractureBody& body, const FractureParams&
 /// The relaxation polynomial of Eq. 2: (r² − d²)³ / r⁶ for d < r, else 0.
 double relaxation_kernel(double distance, double radius);
 
+/// One element's relaxation (Eqs. 3–4) with the tensile-only clamp (paper-gaps §4, reading b):
+/// `amount` = v_relax·φ (Pa, ≥ 0) is removed, but never more than the tensile stress it acts on.
+///  - directional (Eq. 3): σ − min(amount, max(0, dᵀσd))·d dᵀ, d a unit vector; the normal stress
+///    along d ends at ≥ 0 (0 when amount exceeds it) and is untouched when it was compressive;
+///  - isotropic (Eq. 4, `direction` ignored): σ − min(amount, max(0, λ_max))·I; λ_max ends ≥ 0.
+/// Either way a positive semi-definite tensor is subtracted, so no principal stress rises: the
+/// property the event queue relies on (see the top of this file). simulate_fracture's relaxation.
+Eigen::Matrix<double, 6, 1> relax_element_stress(const Eigen::Matrix<double, 6, 1>& stress, double amount,
+                                                 bool directional, const Eigen::Vector3d& direction);
+
 /// The energy criterion's constants (docs/architecture.md): the critical energy release rate
 /// G_c = K_IC²/E (J/m²) and the Griffith flaw size a_f = K_IC² / (π R_cm²) (m) at which an
 /// element's resistance is reached.

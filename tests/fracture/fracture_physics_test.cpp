@@ -1,0 +1,144 @@
+// The simulation's physics, statistically over seeds (issue 10, "How it is shown to work"):
+// directional relaxation (Eq. 3) gives junctions nearer 90° on the visible face than isotropic
+// relaxation (Eq. 4), and a larger load factor l gives more fragments. Each claim compares means
+// over seeds against a margin of twice the standard error of their difference, measured here
+// from the seed-to-seed spread and printed, so a failure says by how much. The runs are
+// deterministic (fixed seeds); the margin is what keeps the claim true for any other equally
+// valid set of seeds or a harmless change of the simulation's round-off.
+#include "fracture_test_bodies.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace fissure {
+namespace {
+
+// Mean and standard error of the mean of per-seed values.
+struct Sample {
+  std::vector<double> values;
+  double mean() const {
+    double s = 0.0;
+    for (double v : values) s += v;
+    return s / static_cast<double>(values.size());
+  }
+  double standard_error() const {
+    const double m = mean();
+    double s = 0.0;
+    for (double v : values) s += (v - m) * (v - m);
+    const auto n = static_cast<double>(values.size());
+    return std::sqrt(s / (n - 1.0) / n);
+  }
+};
+
+double margin(const Sample& a, const Sample& b) {
+  return 2.0 * std::hypot(a.standard_error(), b.standard_error());
+}
+
+struct Tally {
+  Sample angle_distance;  // |mean junction angle − 90°| per seed
+  Sample t_fraction, y_fraction, fragments;
+  long t = 0, y = 0, x = 0;
+};
+
+Tally tally(const PreparedBody& body, const FractureParams& p, int seeds) {
+  Tally t;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    const test::DefaultRun run = test::run_default_scenario(body, p, static_cast<std::uint64_t>(seed));
+    const PatternStats s = test::expect_sane_pattern(body.mesh(), run.result, "seed " + std::to_string(seed));
+    t.fragments.values.push_back(run.result.fragments.count);
+    const int junctions = s.t_count + s.y_count + s.x_count;
+    t.t += s.t_count;
+    t.y += s.y_count;
+    t.x += s.x_count;
+    if (junctions == 0) continue;
+    t.angle_distance.values.push_back(std::abs(s.mean_junction_angle_deg - 90.0));
+    t.t_fraction.values.push_back(static_cast<double>(s.t_count) / junctions);
+    t.y_fraction.values.push_back(static_cast<double>(s.y_count) / junctions);
+  }
+  return t;
+}
+
+// The default tile (ceramic defaults, default load) with both relaxations, 12 seeds each: ~600
+// and ~350 junctions in all.
+struct RelaxationComparison {
+  Tally directional, isotropic;
+  RelaxationComparison() {
+    const PreparedBody body(test::plate_mesh({0.4, 0.4, 0.02}, 20, 20, 1), FractureParams{}.elastic(),
+                            FractureScenario{});
+    FractureParams p;
+    p.relaxation = RelaxationChoice::Directional;
+    directional = tally(body, p, kSeeds);
+    p.relaxation = RelaxationChoice::Isotropic;
+    isotropic = tally(body, p, kSeeds);
+    print("directional", directional);
+    print("isotropic", isotropic);
+  }
+  static void print(const char* name, const Tally& t) {
+    std::printf("%-11s |angle - 90| %.1f ± %.1f° (s.e.), T %ld Y %ld X %ld, T fraction %.3f ± %.3f, fragments %.1f\n",
+                name, t.angle_distance.mean(), t.angle_distance.standard_error(), t.t, t.y, t.x, t.t_fraction.mean(),
+                t.t_fraction.standard_error(), t.fragments.mean());
+  }
+  static constexpr int kSeeds = 12;
+};
+
+const RelaxationComparison& comparison() {
+  static const RelaxationComparison c;
+  return c;
+}
+
+// Eq. 3 removes the stress along the crack normal, so the next crack nearby runs across it;
+// Eq. 4 removes stress in every direction and leaves the next crack's direction to the load
+// and the flaws. Measured (12 seeds): |angle − 90°| 19.0 ± 1.2° against 27.7 ± 1.6°, a
+// difference of 8.7° against a margin of ~4°.
+TEST(FracturePhysics, DirectionalRelaxationGivesJunctionsNearerRightAngles) {
+  const RelaxationComparison& c = comparison();
+  ASSERT_EQ(c.directional.angle_distance.values.size(), static_cast<std::size_t>(RelaxationComparison::kSeeds));
+  ASSERT_EQ(c.isotropic.angle_distance.values.size(), static_cast<std::size_t>(RelaxationComparison::kSeeds));
+  EXPECT_GT(c.isotropic.angle_distance.mean() - c.directional.angle_distance.mean(),
+            margin(c.directional.angle_distance, c.isotropic.angle_distance));
+}
+
+// DISABLED: the issue's "isotropic relaxation gives more Y junctions" does not hold. Nearly
+// every junction the simulation makes is a T by construction — a crack stops on an earlier one,
+// which runs straight through the junction, so the largest gap is ~180° ≥ the 160° T threshold —
+// whatever the relaxation: T fractions 0.953 ± 0.008 (Eq. 3) and 0.938 ± 0.011 (Eq. 4), 1 and 0
+// Y junctions in 12 seeds; on a 30 × 30 tile the order reverses (0.952 against 0.972). Eq. 4
+// skews the Ts (mean angle 62° against 71°) instead of turning them into Ys. Making Ys needs a
+// crack that branches or kinks where it meets another (paper-gaps §3), not a test change.
+TEST(FracturePhysics, DISABLED_IsotropicRelaxationGivesMoreYJunctions) {
+  const RelaxationComparison& c = comparison();
+  EXPECT_GT(c.directional.t_fraction.mean() - c.isotropic.t_fraction.mean(),
+            margin(c.directional.t_fraction, c.isotropic.t_fraction));
+  EXPECT_GT(c.isotropic.y_fraction.mean() - c.directional.y_fraction.mean(),
+            margin(c.directional.y_fraction, c.isotropic.y_fraction));
+}
+
+// A larger load factor gives more fragments (the dσ_e half is simulation_test's
+// FasterStressIncreaseGivesMoreFragments). With the ceramic defaults the default load at l = 30
+// reaches ~5 MPa, a tenth of R_cm, and dσ_e decides everything (l = 10 and l = 30 both give 36.8
+// fragments on average over 8 seeds, ± 2.4 and ± 3.4 s.e.); so here the load acts alone (dσ_e = 0) on a material it can break: R_cm = 1 MPa,
+// R_cvar and v_relax the Table 3 fractions 15 % and 20 % of it. Measured (8 seeds, s.e.): 2.1 ± 0.2
+// fragments at l = 20 against 7.1 ± 1.1 at l = 30, a difference of 5.0 against a margin of 2.2.
+TEST(FracturePhysics, LargerLoadFactorGivesMoreFragments) {
+  const PreparedBody body(test::plate_mesh({0.4, 0.4, 0.02}, 20, 20, 1), FractureParams{}.elastic(), FractureScenario{});
+  FractureParams p;
+  p.stress_rate = 0.0;
+  p.resistance_mean = 1e6;
+  p.resistance_stddev = 0.15 * p.resistance_mean;
+  p.relax_rate = 0.2 * p.resistance_mean;
+  constexpr int kSeeds = 8;
+  p.load_factor = 20.0;
+  const Tally low = tally(body, p, kSeeds);
+  p.load_factor = 30.0;
+  const Tally high = tally(body, p, kSeeds);
+  std::printf("fragments: l = 20 %.2f ± %.2f (s.e.), l = 30 %.2f ± %.2f\n", low.fragments.mean(),
+              low.fragments.standard_error(), high.fragments.mean(), high.fragments.standard_error());
+  EXPECT_GT(high.fragments.mean() - low.fragments.mean(), margin(low.fragments, high.fragments));
+  // Below the load that breaks the tile at all, nothing does.
+  p.load_factor = 5.0;
+  EXPECT_EQ(tally(body, p, 2).fragments.mean(), 1.0);
+}
+
+}  // namespace
+}  // namespace fissure
