@@ -1,5 +1,7 @@
 #include "fissure/fem/sparse_cholesky.hpp"
 
+#include "supernodal_solve.hpp"
+
 #include "fissure/base/error.hpp"
 #include "fissure/base/huge_pages.hpp"
 #include "fissure/base/thread_count.hpp"
@@ -178,6 +180,12 @@ struct SparseCholesky::Impl {
   // (tested under ThreadSanitizer, docs/architecture.md). cholmod_start only sets defaults, so a
   // common per call costs nothing against the triangular solves.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const {
+    // Blocks of right-hand sides: our supernodal kernel (supernodal_solve.hpp says why).
+    if (b.cols() >= 2 && factor->is_super && factor->is_ll && factor->itype == CHOLMOD_INT) {
+      Eigen::MatrixXd out(b.rows(), b.cols());
+      supernodal_block_solve(*factor, b, out);
+      return out;
+    }
     apply_thread_count();
     cholmod_common local{};
     cholmod_start(&local);
