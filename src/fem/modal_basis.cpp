@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <numbers>
 #include <utility>
@@ -141,8 +142,10 @@ public:
   }
 
   struct Result {
-    Eigen::VectorXd mu;      ///< the nev largest Ritz values of T, descending
-    Eigen::MatrixXd vectors; ///< their Ritz vectors, M-orthonormal
+    Eigen::VectorXd mu;  ///< the nev largest Ritz values of T, descending
+    /// Their Ritz vectors, M-orthonormal, in the solver's own buffer (valid while it lives): a
+    /// fresh n × nev matrix would be first touched 4 KiB at a time, a page fault per 512 values.
+    Eigen::Map<const Eigen::MatrixXd> vectors{nullptr, 0, 0};
   };
 
   // `nev` pairs to `tolerance` (‖T y − μ y‖_M ≤ tolerance · μ, the criterion Spectra applied to
@@ -153,9 +156,10 @@ public:
   Result solve(Eigen::Index nev, Eigen::Index ncv, Eigen::Index keep, Eigen::Index block, Eigen::Index flexible,
                double tolerance, int max_restarts) {
     const Eigen::Index n = m_m.rows();
-    // Every n-row buffer is allocated once: V, a restart's V S, the last block's image and M X.
-    HugePageBuffer buffer(static_cast<std::size_t>(n) * static_cast<std::size_t>(2 * ncv + 2 * block));
-    double* pv = buffer.data();
+    // Every n-row buffer is allocated once: V, a restart's V S (and at the end the Ritz vectors),
+    // the last block's image and M X.
+    m_buffer = std::make_unique<HugePageBuffer>(static_cast<std::size_t>(n) * static_cast<std::size_t>(2 * ncv + 2 * block));
+    double* pv = m_buffer->data();
     double* ps = pv + n * ncv;
     using Map = Eigen::Map<Eigen::MatrixXd>;
     Map v(pv, n, ncv), scratch(ps, n, ncv), image(ps + n * ncv, n, block);
@@ -202,7 +206,10 @@ public:
       for (Eigen::Index j = 0; j < nev && converged; ++j) {
         converged = (r * s.block(k - block, j, block, 1)).norm() <= tolerance * mu[j];
       }
-      if (converged) return {mu.head(nev), v.leftCols(k) * s.leftCols(nev)};
+      if (converged) {
+        scratch.leftCols(nev).noalias() = v.leftCols(k) * s.leftCols(nev);
+        return {mu.head(nev), Eigen::Map<const Eigen::MatrixXd>(ps, n, nev)};
+      }
       if (restart >= max_restarts || ncv == flexible) {
         throw NumericalFailure("modal analysis: the block eigensolver did not converge (" + std::to_string(nev) +
                                " modes, basis " + std::to_string(ncv) + ", " + std::to_string(max_restarts) +
@@ -321,7 +328,8 @@ private:
   SparseCholesky m_factor;
   BlockMonitor& m_monitor;
   Rng m_rng{0x1a2c05};
-  Eigen::Map<Eigen::MatrixXd> m_mx{nullptr, 0, 0};  // M X for one block, in solve()'s buffer
+  std::unique_ptr<HugePageBuffer> m_buffer;  // V, a restart's V S (and the result), the last image, M X
+  Eigen::Map<Eigen::MatrixXd> m_mx{nullptr, 0, 0};  // M X for one block, in m_buffer
   Eigen::VectorXd m_mv;  // M x for one column
 };
 
@@ -389,7 +397,8 @@ double first_flexible_eigenvalue_bound(std::shared_ptr<const ElasticBody> body, 
 
 double modal_memory_estimate(Eigen::Index dofs, Eigen::Index modes, Eigen::Index krylov_size, Eigen::Index stiffness_nonzeros) {
   const double n = static_cast<double>(dofs), m = static_cast<double>(modes), ncv = static_cast<double>(krylov_size);
-  // Φ twice (the Ritz vectors and the expanded copy), the block basis V and a restart's copy
+  // Φ twice (the Ritz vectors, now formed in the restart copy, so an overestimate by n·m, and the
+  // expanded copy), the block basis V and a restart's copy
   // V S (the block image and M X: 2·b columns, counted in the third n × ncv), the dense
   // ncv × ncv Rayleigh–Ritz matrix with its eigenvectors and a copy, and the factor of K − σM:
   // nnz(L) = 4.7 × nnz(K_ff) on the 21.5K-tet CGAL tile (2.88M against 608K, bench_fem's
@@ -479,7 +488,7 @@ ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const st
   if (cancel) cancel->throw_if_cancelled();
   // μ descending is λ = σ + 1/μ ascending.
   const Eigen::VectorXd values = (sigma + ritz.mu.array().inverse()).matrix();
-  const Eigen::MatrixXd& vectors = ritz.vectors;
+  const Eigen::Map<const Eigen::MatrixXd>& vectors = ritz.vectors;  // in the solver's buffer
 
   ModalBasis basis;
   basis.m_mass = options.mass;
