@@ -27,6 +27,8 @@ SECTION_NOTES = {
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "
                  "gradients and pattern), factor ≤ 100 ms (`threads`: the process's threads afterwards, 1 on one thread), direct solve ≤ 3 ms (includes the residual check), "
                  "50 modes ≤ 0.6 s (`Eigensolve50/N/1` supported, `/0` free), modal solve m = 50 ≤ 0.1 ms, "
+                 "`EigensolveFewModes/N/m`: m = 10 and 20 modes, supported (no target; single-vector Lanczos took "
+                 "64–67 / 80–91 ms at 7K on the loaded machine of issue 9, blocks of 4 now). "
                  "`BlockSolve/N/r`: r right-hand sides solved together with one factor (`us_per_rhs` per column; "
                  "1 is CHOLMOD's supernodal solve, blocks go through Fissure's kernel, the eigensolver's 8 at a time), "
                  "stress + max principal ≤ 0.5 ms. `StressRecoveryBuild` / `Apply`: the patch-recovery operator, "
