@@ -19,8 +19,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <new>
 #include <numbers>
+#include <utility>
 
 
 namespace fissure {
@@ -78,6 +80,35 @@ private:
   double* m_data;
 };
 
+// A −= σ M, in A's own storage when M's pattern lies within A's, as the mass matrices' lie within
+// K's (lumped M is diagonal; consistent M couples the nodes of a tet, as K does). The sparse
+// expression A − σM builds a third matrix, growing it as it goes: at 24K tets its first touch was
+// ~4K page faults, more than the rest of the setup (the 10 µs faults of performance.md).
+void subtract_scaled(Eigen::SparseMatrix<double>& a, double sigma, const Eigen::SparseMatrix<double>& m) {
+  using Inner = Eigen::SparseMatrix<double>::InnerIterator;
+  const auto within = [&] {
+    for (Eigen::Index j = 0; j < m.outerSize(); ++j) {
+      Inner ia(a, j);
+      for (Inner im(m, j); im; ++im) {
+        while (ia && ia.row() < im.row()) ++ia;
+        if (!ia || ia.row() != im.row()) return false;
+      }
+    }
+    return true;
+  };
+  if (!a.isCompressed() || !within()) {
+    a = a - sigma * m;
+    return;
+  }
+  for (Eigen::Index j = 0; j < m.outerSize(); ++j) {
+    Inner ia(a, j);
+    for (Inner im(m, j); im; ++im) {
+      while (ia.row() < im.row()) ++ia;
+      ia.valueRef() -= sigma * im.value();
+    }
+  }
+}
+
 // Block shift-invert Krylov–Schur for the lowest eigenpairs of K φ = λ M φ on the M-orthogonal
 // complement of the rigid motions R (M-orthonormal; empty for a supported body).
 //
@@ -101,17 +132,20 @@ private:
 // pending Q, which is M-orthogonal to all of the old V and so still satisfies the relation.
 class BlockShiftInvert {
 public:
-  BlockShiftInvert(const Eigen::SparseMatrix<double>& k, const Eigen::SparseMatrix<double>& m,
-                   const Eigen::MatrixXd& rigid, double sigma, BlockMonitor& monitor)
+  // Takes K (its storage becomes K − σM) and factorises it.
+  BlockShiftInvert(Eigen::SparseMatrix<double> k, const Eigen::SparseMatrix<double>& m, const Eigen::MatrixXd& rigid,
+                   double sigma, BlockMonitor& monitor)
       : m_m(m), m_rigid(rigid), m_mass_rigid(m * rigid), m_monitor(monitor) {
     m_rng = Rng(0x1a2c05);
-    const Eigen::SparseMatrix<double> shifted = k - sigma * m;
-    m_factor.factorize(shifted);
+    if (sigma != 0.0) subtract_scaled(k, sigma, m);
+    m_factor.factorize(k);
   }
 
   struct Result {
-    Eigen::VectorXd mu;      ///< the nev largest Ritz values of T, descending
-    Eigen::MatrixXd vectors; ///< their Ritz vectors, M-orthonormal
+    Eigen::VectorXd mu;  ///< the nev largest Ritz values of T, descending
+    /// Their Ritz vectors, M-orthonormal, in the solver's own buffer (valid while it lives): a
+    /// fresh n × nev matrix would be first touched 4 KiB at a time, a page fault per 512 values.
+    Eigen::Map<const Eigen::MatrixXd> vectors{nullptr, 0, 0};
   };
 
   // `nev` pairs to `tolerance` (‖T y − μ y‖_M ≤ tolerance · μ, the criterion Spectra applied to
@@ -122,9 +156,10 @@ public:
   Result solve(Eigen::Index nev, Eigen::Index ncv, Eigen::Index keep, Eigen::Index block, Eigen::Index flexible,
                double tolerance, int max_restarts) {
     const Eigen::Index n = m_m.rows();
-    // Every n-row buffer is allocated once: V, a restart's V S, the last block's image and M X.
-    HugePageBuffer buffer(static_cast<std::size_t>(n) * static_cast<std::size_t>(2 * ncv + 2 * block));
-    double* pv = buffer.data();
+    // Every n-row buffer is allocated once: V, a restart's V S (and at the end the Ritz vectors),
+    // the last block's image and M X.
+    m_buffer = std::make_unique<HugePageBuffer>(static_cast<std::size_t>(n) * static_cast<std::size_t>(2 * ncv + 2 * block));
+    double* pv = m_buffer->data();
     double* ps = pv + n * ncv;
     using Map = Eigen::Map<Eigen::MatrixXd>;
     Map v(pv, n, ncv), scratch(ps, n, ncv), image(ps + n * ncv, n, block);
@@ -133,9 +168,10 @@ public:
     Eigen::MatrixXd h = Eigen::MatrixXd::Zero(ncv, ncv);  // Vᵀ M T V, upper triangle
     Eigen::MatrixXd r = Eigen::MatrixXd::Zero(block, block);  // T V_last = V C + Q R
     Eigen::Index k = 0;
+    Eigen::Index coupled = 0;  // the first column of V the next block's image couples with
     Eigen::MatrixXd q(n, block);
     for (Eigen::Index j = 0; j < block; ++j) q.col(j) = random_vector();
-    orthonormalise(q, v, 0, nullptr);
+    orthonormalise(q, v, 0, 0, nullptr);
     for (int restart = 0;; ++restart) {
       // Expand: the Gram–Schmidt coefficients of each image are H's new columns, and the
       // coefficients R of the last image on the next block Q give the residuals below.
@@ -145,7 +181,8 @@ public:
         q = image;
         k += block;
         if (k + block <= flexible) {
-          orthonormalise(q, v, k, &h);
+          orthonormalise(q, v, k, coupled, &h);
+          coupled = k - block;  // the next image couples with this block and its own
           m_mx.noalias() = m_m * image;
           r.noalias() = q.transpose() * m_mx;
         } else {  // the basis is the whole complement: T V = V H exactly
@@ -169,7 +206,10 @@ public:
       for (Eigen::Index j = 0; j < nev && converged; ++j) {
         converged = (r * s.block(k - block, j, block, 1)).norm() <= tolerance * mu[j];
       }
-      if (converged) return {mu.head(nev), v.leftCols(k) * s.leftCols(nev)};
+      if (converged) {
+        scratch.leftCols(nev).noalias() = v.leftCols(k) * s.leftCols(nev);
+        return {mu.head(nev), Eigen::Map<const Eigen::MatrixXd>(ps, n, nev)};
+      }
       if (restart >= max_restarts || ncv == flexible) {
         throw NumericalFailure("modal analysis: the block eigensolver did not converge (" + std::to_string(nev) +
                                " modes, basis " + std::to_string(ncv) + ", " + std::to_string(max_restarts) +
@@ -186,6 +226,7 @@ public:
       h.setZero();
       h.topLeftCorner(keep, keep) = mu.head(keep).asDiagonal();
       k = keep;
+      coupled = 0;
     }
   }
 
@@ -208,33 +249,51 @@ private:
     deflate(out);
   }
   // X ← an M-orthonormal basis of the part of X M-orthogonal to the first k columns of V: block
-  // classical Gram–Schmidt twice ("twice is enough", Giraud et al. 2005), then modified
-  // Gram–Schmidt inside the block, twice per column. The coefficients of both passes, Vᵀ M X,
-  // are stored in `h` (columns k − b … k − 1) when given. A column that loses all but 1e-10 of its
-  // norm lies in the span already (the Krylov space is exhausted or the block is rank
-  // deficient); it is replaced by a seeded random vector so the block keeps its width.
+  // classical Gram–Schmidt, then modified Gram–Schmidt inside the block, twice per column. The
+  // coefficients of every pass, Vᵀ M X, are summed in `h` (columns k − b … k − 1) when given. A
+  // column that loses all but 1e-10 of its norm lies in the span already (the Krylov space is
+  // exhausted or the block is rank deficient); it is replaced by a seeded random vector so the
+  // block keeps its width.
+  //
+  // X is the image of V's last block, which in exact arithmetic has components only along the
+  // columns from `coupled` on: the last two blocks in the block-Lanczos recurrence, everything
+  // after a restart, whose kept Ritz vectors all couple to the pending block. So a first pass
+  // over those columns removes what Gram–Schmidt is for, and one pass over all of V then removes
+  // the rest, round-off of earlier steps; that the second removed little is checked, not assumed
+  // (DGKS: Daniel, Gragg, Kaufman, Stewart 1976, the test ARPACK uses): a column that lost more than
+  // 1 − 1/√2 of its M-norm in a pass gets another full pass. Before, every block took two passes
+  // over all of V ("twice is enough", Giraud et al. 2005): the DGKS test spared the second for 1
+  // block in 27 at 24K tets, since the first always removed the recurrence's large part. The
+  // local pass halves the Gram–Schmidt, after the solves the largest cost of the iteration.
   void orthonormalise(Eigen::MatrixXd& x, const Eigen::Ref<const Eigen::MatrixXd>& v, Eigen::Index k,
-                      Eigen::MatrixXd* h) {
+                      Eigen::Index coupled, Eigen::MatrixXd* h) {
     const Eigen::Index b = x.cols();
-    Eigen::VectorXd entry_norm(b);
-    m_mx.noalias() = m_m * x;
-    for (Eigen::Index j = 0; j < b; ++j) entry_norm[j] = std::sqrt(std::max(0.0, x.col(j).dot(m_mx.col(j))));
+    const auto m_norms = [&] {  // ‖x_j‖_M; leaves M X in m_mx for the next projection
+      m_mx.noalias() = m_m * x;
+      Eigen::VectorXd out(b);
+      for (Eigen::Index j = 0; j < b; ++j) out[j] = std::sqrt(std::max(0.0, x.col(j).dot(m_mx.col(j))));
+      return out;
+    };
+    // X −= V_[from, k) (V_[from, k)ᵀ M X), M X in m_mx; the coefficients go to h's rows from … k − 1.
+    const auto project = [&](Eigen::Index from) {
+      const Eigen::MatrixXd c = v.middleCols(from, k - from).transpose() * m_mx;
+      if (h) h->block(from, k - b, k - from, b) += c;
+      x.noalias() -= v.middleCols(from, k - from) * c;
+    };
+    Eigen::VectorXd entry_norm = m_norms();
+    Eigen::VectorXd before = entry_norm;
+    if (h && k > 0) h->block(0, k - b, k, b).setZero();
+    if (coupled > 0 && k > 0) {
+      project(coupled);
+      before = m_norms();
+    }
     for (int pass = 0; pass < 2 && k > 0; ++pass) {
-      if (pass > 0) {
-        m_mx.noalias() = m_m * x;
-        // DGKS (Daniel, Gragg, Kaufman, Stewart 1976): the second pass only corrects the
-        // round-off of the first where that first pass removed most of a column; a block whose
-        // columns all kept more than 1/√2 of their M-norm is orthogonal to V to working precision.
-        bool needed = false;
-        for (Eigen::Index j = 0; j < b; ++j) {
-          needed = needed || std::sqrt(std::max(0.0, x.col(j).dot(m_mx.col(j)))) < 0.7071 * entry_norm[j];
-        }
-        if (!needed) break;
-      }
-      const Eigen::MatrixXd c = v.leftCols(k).transpose() * m_mx;
-      if (h && pass == 0) h->block(0, k - b, k, b) = c;
-      if (h && pass == 1) h->block(0, k - b, k, b) += c;
-      x.noalias() -= v.leftCols(k) * c;
+      project(0);
+      const Eigen::VectorXd after = m_norms();
+      bool again = false;
+      for (Eigen::Index j = 0; j < b; ++j) again = again || after[j] < 0.7071 * before[j];
+      if (!again) break;
+      before = after;
     }
     for (Eigen::Index j = 0; j < b; ++j) {
       for (int attempt = 0;; ++attempt) {
@@ -269,7 +328,8 @@ private:
   SparseCholesky m_factor;
   BlockMonitor& m_monitor;
   Rng m_rng{0x1a2c05};
-  Eigen::Map<Eigen::MatrixXd> m_mx{nullptr, 0, 0};  // M X for one block, in solve()'s buffer
+  std::unique_ptr<HugePageBuffer> m_buffer;  // V, a restart's V S (and the result), the last image, M X
+  Eigen::Map<Eigen::MatrixXd> m_mx{nullptr, 0, 0};  // M X for one block, in m_buffer
   Eigen::VectorXd m_mv;  // M x for one column
 };
 
@@ -337,7 +397,8 @@ double first_flexible_eigenvalue_bound(std::shared_ptr<const ElasticBody> body, 
 
 double modal_memory_estimate(Eigen::Index dofs, Eigen::Index modes, Eigen::Index krylov_size, Eigen::Index stiffness_nonzeros) {
   const double n = static_cast<double>(dofs), m = static_cast<double>(modes), ncv = static_cast<double>(krylov_size);
-  // Φ twice (the Ritz vectors and the expanded copy), the block basis V and a restart's copy
+  // Φ twice (the Ritz vectors, now formed in the restart copy, so an overestimate by n·m, and the
+  // expanded copy), the block basis V and a restart's copy
   // V S (the block image and M X: 2·b columns, counted in the third n × ncv), the dense
   // ncv × ncv Rayleigh–Ritz matrix with its eigenvectors and a copy, and the factor of K − σM:
   // nnz(L) = 4.7 × nnz(K_ff) on the 21.5K-tet CGAL tile (2.88M against 608K, bench_fem's
@@ -378,7 +439,7 @@ ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const st
 
   const bool free = fixed_dofs.empty();
   const DofMap dofs(3 * mesh.node_count(), fixed_dofs);
-  const Eigen::SparseMatrix<double> k = dofs.restrict_matrix(body->stiffness());
+  Eigen::SparseMatrix<double> k = dofs.restrict_matrix(body->stiffness());
   const Eigen::SparseMatrix<double> m = dofs.restrict_matrix(body->mass_matrix(options.mass));
   // Free body: the exact rigid motions, M-orthonormal (no dof is fixed, so free = all dofs).
   const Eigen::MatrixXd rigid = free ? mass_orthonormal_rigid_modes(*body, options.mass) : Eigen::MatrixXd();
@@ -393,10 +454,15 @@ ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const st
   // tets, m = 50 (larger blocks solve cheaper per column but need more columns and more
   // Gram–Schmidt). Beyond nev = 80 the basis grows by 160 only: Gram–Schmidt costs n·ncv² and
   // Rayleigh–Ritz ncv³ per restart, and 3·nev made m = 400 slower than single-vector Lanczos
-  // (nev + 160 halved it). Smaller blocks for tiny meshes, whose free dimension must hold the
-  // basis plus a pending block.
+  // (nev + 160 halved it). Blocks of 4 for few modes on small meshes: a solve costs about the
+  // same for 4 columns as for 8 (BM_BlockSolve), but a block of 4 converges 20 modes in fewer
+  // columns and half the Gram–Schmidt, which on a small mesh costs as much as the solves
+  // (n·k per column against nnz(L) ~ n^1.7): 7K tets, m = 10 and 20, 8 → 4 took 92–99 → 73–90 ms,
+  // while at 24K it was even or slower. Smaller blocks still for tiny meshes, whose free
+  // dimension must hold the basis plus a pending block.
   const Eigen::Index flexible = n - rigid.cols();
-  Eigen::Index block = std::clamp<Eigen::Index>((flexible - nev) / 3, 1, 8);
+  const Eigen::Index widest = nev <= 24 && n <= 12000 ? 4 : 8;
+  Eigen::Index block = std::clamp<Eigen::Index>((flexible - nev) / 3, 1, widest);
   Eigen::Index ncv = std::min<Eigen::Index>(
       flexible - block, std::max<Eigen::Index>(options.krylov_size > 0 ? options.krylov_size : nev + std::min<Eigen::Index>(2 * nev, 160), nev + 3 * block));
   if (ncv < nev + block) {
@@ -417,12 +483,12 @@ ModalBasis ModalBasis::compute(std::shared_ptr<const ElasticBody> body, const st
   sink.report("modal analysis", 0.02);
   const Eigen::Index keep = std::min(ncv - block, nev + (ncv - nev) / 4);
   BlockMonitor monitor(sink, cancel, static_cast<double>(ncv + 2 * (ncv - keep)));
-  BlockShiftInvert solver(k, m, rigid, sigma, monitor);  // factorises K − σM (≈ 10 % of the time)
+  BlockShiftInvert solver(std::move(k), m, rigid, sigma, monitor);  // factorises K − σM
   const BlockShiftInvert::Result ritz = solver.solve(nev, ncv, keep, block, flexible, options.tolerance, options.max_iterations);
   if (cancel) cancel->throw_if_cancelled();
   // μ descending is λ = σ + 1/μ ascending.
   const Eigen::VectorXd values = (sigma + ritz.mu.array().inverse()).matrix();
-  const Eigen::MatrixXd& vectors = ritz.vectors;
+  const Eigen::Map<const Eigen::MatrixXd>& vectors = ritz.vectors;  // in the solver's buffer
 
   ModalBasis basis;
   basis.m_mass = options.mass;

@@ -27,9 +27,11 @@ public:
   void refactorize(const Eigen::SparseMatrix<double>& a);
 
   /// x = A⁻¹ b for one or several right-hand sides (columns). Throws InvalidInput when nothing is
-  /// factorised or b has the wrong row count. Thread-safe: concurrent solves on one factor each
-  /// use their own CHOLMOD workspace and only read the factor (factorize/refactorize, being
-  /// non-const, must not run at the same time).
+  /// factorised or b has the wrong row count. One column is CHOLMOD's supernodal solve; two or
+  /// more go through Fissure's own supernodal kernel, 2–3× faster per column for blocks of 8
+  /// (BM_BlockSolve in docs/BENCHMARKS.md), equal to CHOLMOD's to round-off. Thread-safe:
+  /// concurrent solves on one factor each use their own workspace and only read the factor
+  /// (factorize/refactorize, being non-const, must not run at the same time).
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
 
