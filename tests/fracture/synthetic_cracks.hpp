@@ -229,7 +229,7 @@ inline void add_hierarchical_cracks(const TetMesh& mesh, std::vector<CrackSurfac
       if (c >= 0 && std::find(stop.begin(), stop.end(), c) == stop.end()) stop.push_back(c);
     }
     const int id = add_plane_crack(mesh, cracks, {Eigen::Vector3d(normal.x(), normal.y(), 0.0),
-                                                  Eigen::Vector3d(point.x(), point.y(), 0.0), stop, {}});
+                                                  Eigen::Vector3d(point.x(), point.y(), 0.0), stop, {}, {}});
     // The two halves of the cell.
     Cell halves[2];
     for (int side = 0; side < 2; ++side) {
