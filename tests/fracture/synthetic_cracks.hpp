@@ -34,6 +34,14 @@ struct PlaneCrack {
   /// stop_on sides of later cracks are still judged by this crack's plane, so give an offset only
   /// to cracks nothing stops on.
   std::function<double(const Eigen::Vector3d&)> offset;
+
+  // A constructor, not aggregate initialisation, so that a brace list may stop after any member.
+  PlaneCrack(const Eigen::Vector3d& normal_ = Eigen::Vector3d::UnitX(),
+             const Eigen::Vector3d& point_ = Eigen::Vector3d::Zero(), std::vector<int> stop_on_ = {},
+             std::function<bool(const Eigen::Vector3d&)> region_ = {},
+             std::function<double(const Eigen::Vector3d&)> offset_ = {})
+      : normal(normal_), point(point_), stop_on(std::move(stop_on_)), region(std::move(region_)),
+        offset(std::move(offset_)) {}
 };
 
 /// Mesh scale for the snapping rule of CrackCut (values within 1e-6·h of zero move off it): the
@@ -229,7 +237,7 @@ inline void add_hierarchical_cracks(const TetMesh& mesh, std::vector<CrackSurfac
       if (c >= 0 && std::find(stop.begin(), stop.end(), c) == stop.end()) stop.push_back(c);
     }
     const int id = add_plane_crack(mesh, cracks, {Eigen::Vector3d(normal.x(), normal.y(), 0.0),
-                                                  Eigen::Vector3d(point.x(), point.y(), 0.0), stop, {}, {}});
+                                                  Eigen::Vector3d(point.x(), point.y(), 0.0), stop});
     // The two halves of the cell.
     Cell halves[2];
     for (int side = 0; side < 2; ++side) {
