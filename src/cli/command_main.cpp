@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <exception>
+#include <cstdlib>
 #include <iostream>
 #include <new>
 #include <string>
@@ -50,6 +51,17 @@ int run_command(int argc, char** argv, void (*register_command)(CLI::App&, Actio
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e);
     return code == 0 ? kExitOk : kExitUsage;
+  }
+
+  // FISSURE_THREADS is a hint: a value that is not a count falls back to the default
+  // (base/thread_count.cpp), but not silently.
+  if (const char* text = std::getenv("FISSURE_THREADS"); text && *text) {
+    char* end = nullptr;
+    const long n = std::strtol(text, &end, 10);
+    if (*end != '\0' || n < 1 || n > 1024) {
+      std::cerr << "fissure: warning: FISSURE_THREADS=" << text
+                << " is not a whole number in [1, 1024]; it is ignored\n";
+    }
   }
 
   try {

@@ -98,13 +98,18 @@ TEST(Dispatcher, UsageErrorsAreOneLine) {
   r = test::run_command(fissure() + " mesh tile:1,1,0.05 --threads abc -o never.msh");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output, "fissure: --threads: 'abc' is not a whole number (see fissure mesh --help)\n");
+  // A bad FISSURE_THREADS is ignored, but said (it used to be ignored silently).
+  r = test::run_command("FISSURE_THREADS=abc " + fissure() + " analyze /nonexistent.png");
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_EQ(r.output.rfind("fissure: warning: FISSURE_THREADS=abc is not a whole number in [1, 1024]; it is ignored\n", 0), 0u)
+      << r.output;
   r = test::run_command(fissure());
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.output, "fissure: a command is required (commands: mesh, solve, modes, analyze, compare, fracture, version)\n");
   // Every command the help lists is one the dispatcher can run.
   r = test::run_command(fissure() + " --help");
   EXPECT_EQ(r.exit_code, 0);
-  for (const char* command : {"mesh", "solve", "modes", "analyze", "compare"}) {
+  for (const char* command : {"mesh", "solve", "modes", "analyze", "compare", "fracture"}) {
     EXPECT_NE(r.output.find("  " + std::string(command) + " "), std::string::npos) << command;
     EXPECT_EQ(test::run_command(fissure() + " " + command + " --help").exit_code, 0) << command;
   }
