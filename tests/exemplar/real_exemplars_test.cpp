@@ -176,6 +176,12 @@ TEST(RealExemplarDistances, EachIsClosestToItsOwnReference) {
 // the checkout-dependent `source` path, on code whose bytes matched the old digest); any change
 // to the analysis that moves a statistic changes it, and then it is re-derived on purpose.
 TEST(RealExemplars, StatisticsKeepTheirBytes) {
+#if defined(__SANITIZE_ADDRESS__)
+  // The digest is of the uninstrumented build's bytes. Sanitizer instrumentation changes the
+  // generated floating-point code (which a·b + c GCC fuses into an FMA, for one), and the last
+  // bits of the statistics differ (CI's sanitizer pass: c8e0616a…). The plain pass checks it.
+  GTEST_SKIP() << "bytes of the uninstrumented build; not comparable under AddressSanitizer";
+#endif
   if (!shared_exemplars_present()) {
     GTEST_SKIP() << "shared exemplars not found at " << exemplar_dir() << " (set FISSURE_SHARED_DIR)";
   }
