@@ -1,5 +1,7 @@
 #include "fissure/fracture/fracture_result.hpp"
 
+#include "union_find.hpp"
+
 #include <algorithm>
 #include <numeric>
 #include <string>
@@ -7,31 +9,6 @@
 
 namespace fissure {
 namespace {
-
-class UnionFind {
-public:
-  int add() {
-    m_parent.push_back(static_cast<int>(m_parent.size()));
-    return m_parent.back();
-  }
-  void reserve(std::size_t n) { m_parent.reserve(n); }
-  int find(int x) {
-    while (m_parent[static_cast<std::size_t>(x)] != x) {
-      m_parent[static_cast<std::size_t>(x)] = m_parent[static_cast<std::size_t>(m_parent[static_cast<std::size_t>(x)])];
-      x = m_parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) m_parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  }
-  std::size_t size() const { return m_parent.size(); }
-
-private:
-  std::vector<int> m_parent;
-};
 
 // The seven probe points of a face, as weights on its three nodes.
 constexpr double kProbes[7][3] = {{0.8, 0.1, 0.1},   {0.1, 0.8, 0.1},   {0.1, 0.1, 0.8},   {0.45, 0.45, 0.1},
@@ -45,13 +22,11 @@ struct CutRef {
 class PieceLabeller {
 public:
   PieceLabeller(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int count)
-      : m_mesh(mesh), m_cuts(static_cast<std::size_t>(mesh.tet_count())) {
+      : m_mesh(mesh), m_cuts(static_cast<std::size_t>(mesh.tet_count())), m_sets(static_cast<std::size_t>(mesh.tet_count())) {
     for (int k = 0; k < count; ++k) {
       for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) m_cuts[static_cast<std::size_t>(c.tet)].push_back({k, &c});
     }
     // Uncut tets are one piece each, with the tet's index as its id.
-    m_sets.reserve(static_cast<std::size_t>(mesh.tet_count()));
-    for (int t = 0; t < mesh.tet_count(); ++t) m_sets.add();
   }
 
   // The piece of `tet` holding the point with weights `w` on its local nodes.
@@ -156,7 +131,7 @@ private:
   const TetMesh& m_mesh;
   std::vector<std::vector<CutRef>> m_cuts;
   std::unordered_map<int, std::vector<std::pair<std::string, int>>> m_pieces;
-  UnionFind m_sets;
+  detail::UnionFind m_sets;
 };
 
 }  // namespace

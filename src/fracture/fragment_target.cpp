@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <vector>
 
 namespace fissure {
 
@@ -23,15 +24,25 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
   }
   FragmentTargetResult out;
   const int n = static_cast<int>(run.cracks.size());
-  auto fragments_of = [&](int k) { return label_fragments(body.mesh(), run.cracks, k).count; };
+  // Fragment counts of crack prefixes, each labelled once.
+  std::vector<int> counted(static_cast<std::size_t>(n) + 1, -1);
+  auto fragments_of = [&](int k) {
+    int& c = counted[static_cast<std::size_t>(k)];
+    if (c < 0) c = label_fragments(body.mesh(), run.cracks, k).count;
+    return c;
+  };
   // Smallest prefix with ≥ target fragments (the count is non-decreasing in the prefix).
   int lo = 0, hi = n;
   if (fragments_of(n) < target) {
-    lo = hi = n;
+    lo = n;
   } else {
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
-      (fragments_of(mid) >= target ? hi : lo) = mid + (fragments_of(mid) >= target ? 0 : 1);
+      if (fragments_of(mid) >= target) {
+        hi = mid;
+      } else {
+        lo = mid + 1;
+      }
     }
   }
   int k = lo;

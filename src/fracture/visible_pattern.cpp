@@ -3,6 +3,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/exemplar/crack_image.hpp"
+#include "union_find.hpp"
 
 #include <Eigen/Geometry>
 
@@ -116,26 +117,6 @@ struct Piece {
   std::array<Bary, 3 + kMaxCracksPerTriangle> vertices;
   int size = 0;
   void push_back(const Bary& b) { vertices[static_cast<std::size_t>(size++)] = b; }
-};
-
-class UnionFind {
-public:
-  explicit UnionFind(std::size_t n) : m_parent(n) { std::iota(m_parent.begin(), m_parent.end(), 0); }
-  int find(int x) {
-    while (m_parent[static_cast<std::size_t>(x)] != x) {
-      m_parent[static_cast<std::size_t>(x)] = m_parent[static_cast<std::size_t>(m_parent[static_cast<std::size_t>(x)])];
-      x = m_parent[static_cast<std::size_t>(x)];
-    }
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) m_parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);  // lowest index is the root
-  }
-
-private:
-  std::vector<int> m_parent;
 };
 
 // Splits a convex piece by the line where `values` (at the triangle's nodes) vanish. Vertices within
@@ -519,7 +500,7 @@ VisiblePattern extract_visible_pattern(const TetMesh& mesh, const std::vector<Cr
 
   // Pieces across a shared edge whose footprints overlap are one fragment; a footprint on an edge
   // of the region makes its fragment touch the border.
-  UnionFind sets(static_cast<std::size_t>(piece_count));
+  detail::UnionFind sets(static_cast<std::size_t>(piece_count));
   // Bucketed by edge (a counting sort: pieces stay in order within an edge).
   std::vector<int> first(static_cast<std::size_t>(edges.count()) + 1, 0);
   for (const Footprint& f : footprints) ++first[static_cast<std::size_t>(f.edge) + 1];

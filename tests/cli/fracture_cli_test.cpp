@@ -54,7 +54,7 @@ TEST_F(FractureCli, WritesStatisticsADrawingAndViewsTheOtherToolsRead) {
   // distance 0 from itself.
   const auto c = test::run_command(fissure() + " compare " + path("s.json") + " " + path("s.json"));
   EXPECT_EQ(c.exit_code, 0) << c.output;
-  EXPECT_NE(c.output.find("0"), std::string::npos) << c.output;
+  EXPECT_EQ(c.output.rfind("Eq. 5 error 0 = ", 0), 0u) << c.output;
   // `fissure analyze` reads the drawing and finds the pattern's fragments (the geometric count
   // and the drawing's agree: visible_pattern_test measures by how much).
   const auto a = test::run_command(fissure() + " analyze " + path("p.png") + " --json " + path("a.json") + " -q");
