@@ -279,20 +279,27 @@ private:
     for (int i = 0; i < 4; ++i) mean += surface(m_mesh.nodes().row(m_mesh.tets()(origin, i)).transpose());
     surface.subtract(0.25 * mean);
 
-    // Flood (paper-gaps §3): breadth first through the faces the surface crosses, with the
-    // energy budget B (docs/architecture.md): each tet adds A_e (G_e − G_c), where
-    // G_e = π a σ_n² / E is Griffith's release rate for a crack of size a = max(√(A/π), a_f)
-    // under the normal stress σ_n across it; a tet that would drive B below zero is not entered.
+    // Flood (paper-gaps §3): breadth first through the faces the surface crosses, with an
+    // energy budget carried along each path (docs/fracture.md): each tet adds A_e (G_e − G_c),
+    // where G_e = π a σ_n² / E is Griffith's release rate for a crack of size a = max(√(A/π),
+    // a_f) under the normal stress σ_n across it, and the budget a path carries decays as
+    // exp(−ℓ/r_relax) over the distance ℓ it travels; a tet that would drive its path's budget
+    // below zero is not entered. One budget for the whole crack (paper-gaps' reading) let energy
+    // released in one place carry the crack anywhere: a crack opened in tension ran 0.7 m through
+    // unstressed material, and cracks opened at a tile's side walls delaminated it. Energy
+    // released at the front drives it only within the distance over which a crack redistributes
+    // stress, r_relax.
     std::vector<CrackCut>& cuts = crack.cuts;
-    // A frontier entry: a tet of E_c and whether the flood reached it from a T-junction tet
-    // (then it is completing the junction: see below).
+    // A frontier entry: a tet of E_c, its path's budget, and how many tets in a row the flood has
+    // entered on it without paying (to close a junction: see below).
     struct Front {
       int tet;
       int cut;  // index in cuts
-      bool joining;
+      int free_steps;
+      double budget;  // energy carried along the path to this tet, J
     };
     std::deque<Front> frontier;
-    double budget = 0.0, area = 0.0;
+    double area = 0.0;
     auto release = [&](int tet, const std::vector<Eigen::Vector3d>& polygon) {
       const Eigen::Vector3d av = detail::polygon_area_vector(polygon);
       const double a_e = 0.5 * av.norm();
@@ -304,11 +311,10 @@ private:
     {
       CrackCut first = make_cut(k, surface, origin);
       const auto [gain, a_e] = release(origin, crack_polygon(tet_nodes(origin), first));
-      budget = std::max(0.0, gain);
       area = a_e;
       cuts.push_back(first);
       m_flood_stamp[static_cast<std::size_t>(origin)] = k;
-      frontier.push_back({origin, 0, false});
+      frontier.push_back({origin, 0, 0, std::max(0.0, gain)});
     }
     std::vector<int> stopped_on;
     while (!frontier.empty()) {
@@ -327,55 +333,60 @@ private:
         bool pos = false, neg = false;
         for (int i : face) (node_value(k, surface, m_mesh.tets()(tet, i)) > 0.0 ? pos : neg) = true;
         if (!(pos && neg)) continue;
-        if (clip && arrival_side(tet, f, tet, k, surface, *clip) != clipped.clip_side) continue;
-        const bool joining = clip != nullptr || front.joining;
+        // From a T tet, on through any face where part of the trace lies on the arrival side: the
+        // middle of the trace alone missed faces the clipping crack crosses, and left the
+        // junction open on the visible face (demo tile: 100 of 136 free ends).
+        if (clip && !trace_reaches_side(tet, f, k, surface, *clip, clipped.clip_side)) continue;
         CrackCut cut = make_cut(k, surface, u);
+        const auto nodes_u = tet_nodes(u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
+        const CrackCut* u_clip = nullptr;
         if (!earlier.empty()) {
           // Crack meets crack: end on the side it arrived from (the side holding the middle of
           // its trace on the shared face) of the crack it runs into first. Where several earlier
           // cracks cut u (a corner), that is the one leaving the least of its polygon on the
           // arrival side: clipping by the earliest one left gaps before a nearer crack (on the
           // demo tile, interior free ends on the visible face 160 → 136).
-          const auto nodes_u = tet_nodes(u);
-          int j = -1, side = 0;
           double least = kInf;
           for (const auto& [i, i_cut] : earlier) {
             const CrackCut& other = m_cracks[static_cast<std::size_t>(i)].cuts[static_cast<std::size_t>(i_cut)];
             CrackCut trial = cut;
             trial.clipped_by = i;
-            trial.clip_side = arrival_side(tet, f, u, k, surface, other);
+            // Going on along the crack it already ends on, it stays on the same side of it (the
+            // P1 values of that crack are shared across the face).
+            trial.clip_side =
+                clip && i == clipped.clipped_by ? clipped.clip_side : arrival_side(tet, f, u, k, surface, other);
             const double remaining = detail::polygon_area(crack_polygon(nodes_u, trial, &other));
             if (remaining < least) {
               least = remaining;
-              j = i;
-              side = trial.clip_side;
+              cut.clipped_by = i;
+              cut.clip_side = trial.clip_side;
+              u_clip = &other;
             }
           }
-          cut.clipped_by = j;
-          cut.clip_side = side;
-          m_flood_stamp[static_cast<std::size_t>(u)] = k;
-          cuts.push_back(cut);
-          stopped_on.push_back(j);
-          frontier.push_back({u, static_cast<int>(cuts.size()) - 1, true});
-          continue;
         }
-        const auto polygon = crack_polygon(tet_nodes(u), cut);
-        const auto [gain, a_e] = release(u, polygon);
-        // Arrest here (another face may still reach u) — unless the tip is closing in on an
-        // earlier crack a few element sizes away: its free surface concentrates stress at the
-        // approaching tip, and a crack that stops just short of another reads as a gap in the
-        // drawing, not a T. Running alongside a crack (no closer) does not count.
+        const auto [gain, a_e] = release(u, crack_polygon(nodes_u, cut, u_clip));
+        // Arrest here when u would take the path's budget below zero (another path may still
+        // reach u), unless the tip is closing a junction: entering a tet of the crack it runs
+        // into, or closing in on an earlier crack a few element sizes away (the earlier crack's
+        // free surface concentrates stress at an approaching tip; a crack that stops just short
+        // of another reads as a gap in the drawing, not a T). Such unpaid steps end kJoinHops
+        // tets after the last paid one: the gaps they close are the mesh's, an element or two
+        // wide, and without the cap a crack with no energy ran on along every crack it met
+        // (tangent cracks opened at a tile's side walls delaminated it through T tets).
         const int near_u = m_near_crack[static_cast<std::size_t>(u)];
-        const bool closing_in = near_u <= kJoinHops && (joining || near_u < m_near_crack[static_cast<std::size_t>(tet)]);
-        if (gain < 0.0 && budget + gain < 0.0 && !closing_in) continue;
-        // Beyond the join distance a joining flood is an ordinary one again.
-        const bool still_joining = joining && near_u <= kJoinHops;
-        budget += gain;
+        const bool closing_in = u_clip || (near_u <= kJoinHops && near_u < m_near_crack[static_cast<std::size_t>(tet)]);
+        const double carried =
+            front.budget * std::exp(-(m_mesh.centroid(u) - m_mesh.centroid(tet)).norm() / m_params.relax_radius);
+        const double path_budget = carried + gain;
+        const bool paid = path_budget >= 0.0;
+        if (!paid && !(closing_in && front.free_steps < kJoinHops)) continue;
         area += a_e;
         m_flood_stamp[static_cast<std::size_t>(u)] = k;
         cuts.push_back(cut);
-        frontier.push_back({u, static_cast<int>(cuts.size()) - 1, still_joining});
+        if (u_clip) stopped_on.push_back(cut.clipped_by);
+        frontier.push_back(
+            {u, static_cast<int>(cuts.size()) - 1, paid ? 0 : front.free_steps + 1, paid ? path_budget : 0.0});
       }
     }
     std::sort(stopped_on.begin(), stopped_on.end());
@@ -411,6 +422,22 @@ private:
       if (j == crack) return m_cracks[static_cast<std::size_t>(j)].cuts[static_cast<std::size_t>(index)];
     }
     throw NumericalFailure("fracture simulation: crack " + std::to_string(crack) + " does not cut " + m_mesh.tet_label(tet));
+  }
+
+  // Whether crack k's trace on local face f of `tet` has a point on side `side` (±1) of crack
+  // `other`'s P1 interpolant in `tet` (≥ 0 kept, crack_polygon's rule): its end points on the
+  // face's edges are enough, the interpolant being linear along the trace.
+  bool trace_reaches_side(int tet, int f, int k, const CrackSurfaceFunction& surface, const CrackCut& other, int side) {
+    const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
+    for (int a = 0; a < 3; ++a) {
+      const int la = face[static_cast<std::size_t>(a)], lb = face[static_cast<std::size_t>((a + 1) % 3)];
+      const double va = node_value(k, surface, m_mesh.tets()(tet, la)), vb = node_value(k, surface, m_mesh.tets()(tet, lb));
+      if ((va > 0.0) == (vb > 0.0)) continue;
+      const double s = va / (va - vb);
+      const double h = (1.0 - s) * other.node_values[static_cast<std::size_t>(la)] + s * other.node_values[static_cast<std::size_t>(lb)];
+      if (side * h >= 0.0) return true;
+    }
+    return false;
   }
 
   // ±1: the sign of crack `other`'s P1 interpolant (in tet u) at the middle of crack k's trace on

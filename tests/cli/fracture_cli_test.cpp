@@ -60,12 +60,10 @@ TEST_F(FractureCli, WritesStatisticsADrawingAndViewsTheOtherToolsRead) {
   const auto a = test::run_command(fissure() + " analyze " + path("p.png") + " --json " + path("a.json") + " -q");
   ASSERT_EQ(a.exit_code, 0) << a.output;
   const auto analysed = nlohmann::json::parse(read_file(path("a.json")));
-  // The drawing's analysis finds the pattern's fragments, but not yet as many as the geometry:
-  // on simulated cracks many traces end a millimetre short of the crack they meet, a gap the
-  // 3 px line closes (docs/fracture.md, "What is not done yet"). On synthetic cracks the two
-  // agree exactly (visible_pattern_test). Checked here: the drawing is read and breaks into
-  // fragments, never fewer than the geometry finds.
-  EXPECT_GE(analysed.at("fragments").at("count").get<int>(), stats.at("fragments").at("count").get<int>());
+  // The drawing's analysis finds the geometry's fragments, within the 10 % that
+  // visible_pattern_test's SimulatedPatternsDrawnAndAnalysedAgree states and explains.
+  const int geometric = stats.at("fragments").at("count").get<int>();
+  EXPECT_NEAR(analysed.at("fragments").at("count").get<int>(), geometric, 0.10 * geometric);
   EXPECT_GE(analysed.at("fragments").at("count").get<int>(), 2);
   // gmsh opens the tet mesh with its three views.
   write_file_atomically(path("views.geo"), "Merge \"" + path("f.msh") + "\";\nPrintf(\"views=%g\", PostProcessing.NbViews);\n");

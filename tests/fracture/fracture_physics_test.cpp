@@ -118,8 +118,11 @@ TEST(FracturePhysics, DISABLED_IsotropicRelaxationGivesMoreYJunctions) {
 // FasterStressIncreaseGivesMoreFragments). With the ceramic defaults the default load at l = 30
 // reaches ~5 MPa, a tenth of R_cm, and dσ_e decides everything (l = 10 and l = 30 both give 36.8
 // fragments on average over 8 seeds, ± 2.4 and ± 3.4 s.e.); so here the load acts alone (dσ_e = 0) on a material it can break: R_cm = 1 MPa,
-// R_cvar and v_relax the Table 3 fractions 15 % and 20 % of it. Measured (8 seeds, s.e.): 2.1 ± 0.2
-// fragments at l = 20 against 7.1 ± 1.1 at l = 30, a difference of 5.0 against a margin of 2.2.
+// R_cvar and v_relax the Table 3 fractions 15 % and 20 % of it. Measured (16 seeds, s.e.): 1.38 ± 0.15
+// fragments at l = 20 against 2.50 ± 0.30 at l = 30, a difference of 1.12 against a margin of 0.67.
+// (With one energy budget per crack the difference was 5.0; since each path carries its own,
+// decaying over r_relax, load cracks from the centre arrest sooner, and 8 seeds no longer
+// separate the means: 0.88 against 1.06.)
 TEST(FracturePhysics, LargerLoadFactorGivesMoreFragments) {
   const PreparedBody body(test::plate_mesh({0.4, 0.4, 0.02}, 20, 20, 1), FractureParams{}.elastic(), FractureScenario{});
   FractureParams p;
@@ -127,7 +130,7 @@ TEST(FracturePhysics, LargerLoadFactorGivesMoreFragments) {
   p.resistance_mean = 1e6;
   p.resistance_stddev = 0.15 * p.resistance_mean;
   p.relax_rate = 0.2 * p.resistance_mean;
-  constexpr int kSeeds = 8;
+  constexpr int kSeeds = 16;
   p.load_factor = 20.0;
   const Tally low = tally(body, p, kSeeds);
   p.load_factor = 30.0;

@@ -142,11 +142,11 @@ struct PlateCase {
 };
 
 // The event queue against Algorithm 1 as printed, with a small step: the same cracks from the
-// same elements in the same order, each at most one step later in the fixed-step run (it tests
-// only at multiples of Δt).
+// same elements in the same order, each within one step of the event time (the fixed-step run
+// tests only at multiples of Δt).
 TEST(FractureSimulation, EventDrivenAgreesWithFixedStepsAsTheStepShrinks) {
   PlateCase plate(5);
-  // Up to the age at which the weakest elements (R = 0.7 R_cm) have crossed: a few dozen
+  // Up to the age at which the weakest elements (R = 0.7 R_cm) have crossed: about a hundred
   // cracks, the early stage where events are distinct; later ones depend on all before them.
   plate.params.age = 0.62;
   const FractureResult events = plate.run(3);
@@ -157,7 +157,12 @@ TEST(FractureSimulation, EventDrivenAgreesWithFixedStepsAsTheStepShrinks) {
   ASSERT_EQ(steps.cracks.size(), events.cracks.size());
   for (std::size_t i = 0; i < events.cracks.size(); ++i) {
     EXPECT_EQ(steps.cracks[i].origin_tet, events.cracks[i].origin_tet) << "crack " << i;
-    EXPECT_GE(steps.cracks[i].time, events.cracks[i].time - 1e-12);
+    // Within one step either way: the fixed-step run opens a crack up to Δt late, and where
+    // the relaxation clamp binds (it removes all the tension along d̂, however much there is)
+    // the stress left differs by up to dσ_e·Δt, which moves the crossings of later cracks by up
+    // to a step either way (crack 111 of 119 here opens 5e-6 earlier, Δt = 7.75e-5). Exactly
+    // ordered times would only hold for identical histories.
+    EXPECT_GE(steps.cracks[i].time, events.cracks[i].time - fixed.fixed_time_step - 1e-12) << "crack " << i;
     EXPECT_LE(steps.cracks[i].time, events.cracks[i].time + fixed.fixed_time_step + 1e-12);
     // The same tets flooded, and a plane turned by no more than the stress moves in one step
     // (dσ·Δt ≈ 1e-4 R_cm against the ≈ R_cm deviatoric stress that sets the direction).
