@@ -164,8 +164,7 @@ int run_fracture(const FractureArgs& args) {
     prepared = std::make_unique<PreparedBody>(mesh, params.elastic(), scenario, thread_count());
     throw_if_interrupted();
     initial = prepared->initial_stress(params, !args.raw_stress);
-    resistance = draw_resistance(static_cast<std::size_t>(mesh->tet_count()), params.resistance_mean,
-                                 params.resistance_stddev, args.seed, thread_count());
+    resistance = draw_resistance(mesh->centroids(), params, args.seed, thread_count());
     preparation_s = clock.milliseconds() / 1e3;
     progress.stage("simulating");
     SimulationOptions options;

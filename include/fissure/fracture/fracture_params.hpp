@@ -39,6 +39,10 @@ struct FractureParams {
   /// K_IC, Pa·√m: the energy criterion that stops a running crack (docs/architecture.md). Not in
   /// the paper's Table 2 (GMD12's criterion is not published); an advanced material field.
   double fracture_toughness = 1.2e6;
+  /// m: the length over which the per-element resistance varies (resistance_field.hpp), so the
+  /// resistance belongs to the body, not to its mesh; 0: one independent draw per element (the
+  /// paper's, mesh-dependent). Not in the paper.
+  double resistance_correlation = 0.1;
 
   // Simulation (IN).
   double age = 10.0;                  ///< duration of Algorithm 1, age units
