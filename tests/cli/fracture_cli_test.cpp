@@ -3,6 +3,7 @@
 
 #include "fissure/base/atomic_file.hpp"
 
+#include "test_shapes.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -98,6 +99,29 @@ TEST_F(FractureCli, FragmentsReachesAboutTheCountAsked) {
   const auto f = nlohmann::json::parse(read_file(path("n.json"))).at("fracture");
   EXPECT_NEAR(f.at("fragments").get<int>(), 8, 8 * 0.2) << f.dump();
   EXPECT_EQ(f.at("fragments_requested"), 8);
+}
+
+// Issue 10: "with no flags at all, tiles from 0.3 m to 1 m and curved bodies (a bowl, a basin)
+// break into several fragments" — as a user runs it, the curved bodies as OBJ files from a
+// modeller. Only --tets differs from the defaults (8K instead of 24K, for the suite's time;
+// curved_bodies_test checks the same bodies over seeds and where the supports and the load land).
+// "Several" read as ≥ 3; the fewest measured over seeds 1–5 at 8K tets are 20 (bowl) and 28
+// (0.3 m tile), so a failure means a default stopped breaking the body, not a seed's luck.
+TEST_F(FractureCli, TilesABowlAndABasinBreakWithNoFlags) {
+  test::write_obj(test::bowl(), path("bowl.obj"));
+  test::write_obj(test::basin(), path("basin.obj"));
+  for (const std::string& input : {std::string("tile:0.3,0.3,0.02"), std::string("tile:0.5,0.5,0.02"),
+                                  std::string("tile:1,1,0.03"), path("bowl.obj"), path("basin.obj")}) {
+    SCOPED_TRACE(input);
+    const auto r = test::run_command(fissure() + " fracture " + input + " --tets 8000 -q --stats " + path("curved.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto stats = nlohmann::json::parse(read_file(path("curved.json")));
+    EXPECT_GE(stats.at("fracture").at("fragments").get<int>(), 3);
+    // The visible face (up within 45°: the tiles' tops, the bowl's inside floor and rim, the
+    // basin's floor and rim) exists and shows the breakage.
+    ASSERT_TRUE(stats.contains("fragments")) << stats.dump();
+    EXPECT_GE(stats.at("fragments").at("count").get<int>(), 3);
+  }
 }
 
 TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
