@@ -45,12 +45,17 @@ double tangent_max(const Voigt& s, const Eigen::Vector3d& n) {
 
 // One heap entry of Algorithm 1's event queue: the earliest time the tet may cross its
 // resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
-// rule for cracks due at one instant, e.g. at t = 0), then by tet index.
+// rule for cracks due at one instant, e.g. at t = 0), then by the tet's centroid (x, then y,
+// then z), so the order is the body's, not its numbering's (ElementOrder tests).
 struct Event {
   double time;
   double neg_ratio;
+  Eigen::Vector3d where;  // the tet's centroid: distinct for distinct tets, whatever their numbering
   int tet;
-  bool operator>(const Event& o) const { return std::tie(time, neg_ratio, tet) > std::tie(o.time, o.neg_ratio, o.tet); }
+  bool operator>(const Event& o) const {
+    return std::tie(time, neg_ratio, where.x(), where.y(), where.z()) >
+           std::tie(o.time, o.neg_ratio, o.where.x(), o.where.y(), o.where.z());
+  }
 };
 
 class Simulation {
@@ -108,7 +113,7 @@ private:
         for (int t = 0; t < m_mesh.tet_count(); ++t) {
           if (!m_initiable[static_cast<std::size_t>(t)]) continue;
           const double r = ratio(t, now);
-          if (r >= best_ratio && (best < 0 || r > best_ratio)) {
+          if (r >= best_ratio && (best < 0 || r > best_ratio || before(t, best))) {
             best = t;
             best_ratio = r;
           }
@@ -139,7 +144,7 @@ private:
     for (int t = 0; t < m_mesh.tet_count(); ++t) {
       const double r = m_resistance(t);
       const double bound = lambda(t) >= r ? 0.0 : (rate > 0.0 ? (r - lambda(t)) / rate : kInf);
-      if (bound <= age) entries.push_back({bound, -lambda(t) / r, t});
+      if (bound <= age) entries.push_back({bound, -lambda(t) / r, m_mesh.centroid(t), t});
     }
     std::priority_queue<Event, std::vector<Event>, std::greater<>> queue(std::greater<>{}, std::move(entries));
     double now = 0.0;
@@ -151,7 +156,7 @@ private:
       // The entry may be stale: relaxation since it was pushed can only have delayed it.
       const double when = crossing_time(e.tet, e.time);
       if (when > e.time) {
-        if (when <= age) queue.push({when, -ratio(e.tet, when), e.tet});
+        if (when <= age) queue.push({when, -ratio(e.tet, when), m_mesh.centroid(e.tet), e.tet});
         continue;
       }
       if (static_cast<int>(m_cracks.size()) >= m_options.max_cracks) {
@@ -163,6 +168,13 @@ private:
       after_crack(now);
     }
     return now;
+  }
+
+  // Ties between tets at one instant with one ratio: the lower centroid (x, then y, then z)
+  // first, so the choice is the body's, not the numbering's.
+  bool before(int a, int b) const {
+    const Eigen::Vector3d ca = m_mesh.centroid(a), cb = m_mesh.centroid(b);
+    return std::tie(ca.x(), ca.y(), ca.z()) < std::tie(cb.x(), cb.y(), cb.z());
   }
 
   bool resolve_directional() const {

@@ -232,12 +232,11 @@ TEST(ElementOrder, WithoutTiesTheFractureIsTheSameUnderAnyNumbering) {
 // Exact ties at t = 0: a uniform in-plane tension twice the resistance, the same resistance in
 // every tet, so every tet is due at t = 0 with the same λ_max/R. Which tet opens first is then
 // the tie rule's choice alone, in the event queue and in the fixed-step reference.
-// DISABLED: it fails while simulation.cpp breaks such ties by tet index (crack 0 opens at tet 0
-// in every numbering, a different physical tet each time, and the runs diverge from there: 184
-// cracks against 187–195). Breaking them by the tet's centroid instead (the lower x, then y,
-// then z first; distinct tets have distinct centroids) makes it pass, events and fixed steps
-// alike: the lead's change to simulation.cpp (issue 10), after which this test is enabled.
-TEST(ElementOrder, DISABLED_WithTiesAtTimeZeroTheFractureIsTheSameUnderAnyNumbering) {
+// Breaking such ties by tet index failed this (crack 0 opened at tet 0 in every numbering, a
+// different physical tet each time, and the runs diverged: 184 cracks against 187–195); the
+// simulation breaks them by the tet's centroid (lower x, then y, then z; distinct tets have
+// distinct centroids), events and fixed steps alike.
+TEST(ElementOrder, WithTiesAtTimeZeroTheFractureIsTheSameUnderAnyNumbering) {
   Problem p;
   p.mesh = small_tile();
   p.params = load_material(find_material(kDefaultMaterialName)).params;
