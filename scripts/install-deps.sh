@@ -10,7 +10,7 @@ packages=(
   libgmsh-dev gmsh
   libassimp-dev assimp-utils
   libopencv-dev
-  libpng-dev libjpeg62-turbo-dev libtiff-dev
+  libpng-dev libjpeg62-turbo-dev libtiff-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev
   qtbase5-dev libqt5opengl5-dev libglfw3-dev libgl-dev

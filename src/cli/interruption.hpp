@@ -3,10 +3,13 @@
 // checks (tetrahedralize, modal analysis); the command then ends with "fissure: cancelled", exit
 // 6, and writes nothing. A second signal kills at once (the default action).
 //
-// The core checks the token only between stages today, and one CGAL refinement can run for
-// minutes. So while no output is being written (an AbandonableWork is alive), a signal that the
-// core has not answered within kGraceSeconds ends the process directly: nothing is lost, because
-// every output is written after the computation, through a temporary file.
+// The core reads the token inside tetrahedralize (CGAL's refinement and sliver removal, tens
+// of ms), the modal solve and the fracture simulation, but not everywhere: image analysis
+// (analyze, compare), the static solve's factorisation, reading and repairing a surface, and
+// the O(tets) steps between tetrahedralize's checks (at 2M tets, seconds) do not. So while no
+// output is being written (an AbandonableWork is alive), a signal that the core has not
+// answered within kGraceSeconds ends the process directly: nothing is lost, because every
+// output is written after the computation, through a temporary file.
 
 #include "fissure/base/progress.hpp"
 

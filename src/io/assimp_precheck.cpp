@@ -151,7 +151,7 @@ void precheck_fbx(std::string_view bytes, const std::string& name) {
     }
     const std::size_t start = c.position();
     const std::uint64_t end = wide ? c.binary<std::uint64_t>(false) : c.binary<std::uint32_t>(false);
-    c.skip(wide ? 8 : 4);  // property count
+    const std::uint64_t property_count = wide ? c.binary<std::uint64_t>(false) : c.binary<std::uint32_t>(false);
     const std::uint64_t property_bytes = wide ? c.binary<std::uint64_t>(false) : c.binary<std::uint32_t>(false);
     const std::uint8_t name_length = c.binary<std::uint8_t>(false);
     if (end == 0) {
@@ -160,8 +160,14 @@ void precheck_fbx(std::string_view bytes, const std::string& name) {
     }
     const std::uint64_t limit = ends.empty() ? bytes.size() : ends.back();
     if (end <= start || end > limit) c.fail("corrupt FBX: a record's end offset " + std::to_string(end) + " lies outside its parent");
-    if (name_length + property_bytes > end - c.position()) c.fail("corrupt FBX: a record's name and properties run past its end");
-    c.skip(name_length + static_cast<std::size_t>(property_bytes));
+    // Overflow-safe: an end inside the record's own header, or 2^64 − 1 property bytes.
+    const std::uint64_t room = end > c.position() ? end - c.position() : 0;
+    if (name_length > room || property_bytes > room - name_length) {
+      c.fail("corrupt FBX: a record's name and properties run past its end");
+    }
+    c.skip(name_length);
+    check_fbx_properties(bytes, c.position(), c.position() + static_cast<std::size_t>(property_bytes), property_count, name);
+    c.skip(static_cast<std::size_t>(property_bytes));
     if (c.position() < end) {
       ends.push_back(end);  // nested records follow
       if (ends.size() > static_cast<std::size_t>(kMaxAssimpNesting)) too_deep(name, "FBX records", start);

@@ -8,8 +8,10 @@
 // same corruptions for glTF 2.0. So nesting is bounded and only glTF 2.0 is accepted. Under
 // AddressSanitizer a third showed: assimp's glTF 2.0 bounds checks wrap and miss strides and
 // sparse data, so it reads outside its buffers (silently in a release build); every byte range
-// it will read is checked here (gltf_bounds.cpp). FBX semantics assimp refuses cleanly by itself
-// (measured: docs/architecture.md, "Surface import").
+// it will read is checked here (gltf_bounds.cpp). In binary FBX, assimp allocates and zeroes
+// a compressed array's claimed size before inflating it (4.2 GB for a 2.5 kB file), so each one
+// is inflated here first (fbx_arrays.cpp). Other FBX semantics assimp refuses cleanly by itself
+// (measured: docs/architecture.md, "Surface import"; the binary FBX fuzz test).
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -37,8 +39,15 @@ void precheck_glb(std::string_view bytes, const std::string& name, const std::fi
 /// values within theirs; mesh primitives and images referring to existing accessors and views.
 void check_gltf_bounds(const nlohmann::json& doc, const std::string& name, const std::filesystem::path& directory,
                        std::optional<std::uint64_t> glb_bin_length);
-/// ASCII or binary FBX: nesting of scopes (ASCII) or records (binary) bounded; the binary
-/// record offsets must lie inside the file and inside their parent record.
+/// ASCII or binary FBX: nesting of scopes (ASCII) or records (binary) bounded; array counts
+/// within what the file can hold (ASCII: 2 bytes a value; binary, zlib-compressed: what the
+/// stored bytes can inflate to); the binary record offsets must lie inside the file and inside
+/// their parent record.
 void precheck_fbx(std::string_view bytes, const std::string& name);
+/// The `count` properties of one binary FBX record, bytes [at, end) of the file, walked as
+/// assimp's tokenizer walks them: each array stored zlib-compressed must inflate to exactly its
+/// count × element size bytes (fbx_arrays.cpp). What assimp checks itself stops the walk.
+void check_fbx_properties(std::string_view bytes, std::size_t at, std::size_t end, std::uint64_t count,
+                          const std::string& name);
 
 }  // namespace fissure::io_detail

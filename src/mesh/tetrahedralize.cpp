@@ -15,6 +15,8 @@
 #include <CGAL/Polyhedral_mesh_domain_with_features_3.h>
 #include <CGAL/Random.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Mesh_3/Sliver_perturber.h>
+#include <CGAL/Mesh_3/Slivers_exuder.h>
 #include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
 #include <CGAL/perturb_mesh_3.h>
@@ -25,6 +27,8 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <unordered_map>
 
@@ -158,17 +162,103 @@ std::unique_ptr<Refinement> refine(const Polyhedron& polyhedron, const Tetrahedr
   return r;
 }
 
-// Sliver removal, bounded by its time limits. Neither pass reads a stop flag: a cancel that
-// arrives during them is honoured when they end. CGAL's generator is reseeded so the result
-// depends only on the accepted refinement, not on the attempts before it.
-void remove_slivers(Refinement& r, const TetrahedralizeOptions& options, ProgressSink& sink, double from, double to) {
+// Reads the caller's CancelToken inside sliver removal. CGAL 5.5's perturber and exuder read no
+// stop flag (the free functions perturb_mesh_3 / exude_mesh_3 stop only at their time limits,
+// 10 s each by default), but both classes call a visitor after every vertex perturbed
+// (end_of_perturbation_iteration), every sliver bound finished (bound_reached) and every cell
+// pumped (after_cell_pumped). On a cancel the watch makes the running pass's own time limit
+// expire, so the pass leaves through its own TIME_LIMIT_REACHED exit at its next step and the
+// complex, discarded afterwards, stays valid. Not covered: the O(tets) queue builds between
+// steps (one per sliver bound, and the exuder's first), which CGAL runs without a visitor. The
+// watch only reads, so an uncancelled run computes what the free functions compute (test:
+// Tetrahedralize.SliverRemovalWatchKeepsTheMesh). It also reports progress, at most five times
+// per second.
+class SliverWatch {
+public:
+  SliverWatch(const CancelToken* cancel, std::function<void()> expire, std::function<void(double)> report)
+      : m_cancel(cancel), m_expire(std::move(expire)), m_report(std::move(report)) {}
+
+  // Sliver_perturber's visitor: `bound` rises by the criterion's unit up to the sliver bound.
+  void bound_reached(double) { poll(); }
+  void end_of_perturbation_iteration(std::size_t) { poll(); }
+  // Slivers_exuder's visitor: the cells still queued.
+  void after_cell_pumped(std::size_t) { poll(); }
+
+private:
+  void poll() {
+    if (m_cancel && !m_expired && m_cancel->cancelled()) {
+      m_expired = true;
+      m_expire();
+    }
+    if (++m_calls % 64 != 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - m_last < std::chrono::milliseconds(200)) return;
+    m_last = now;
+    m_report(std::chrono::duration<double>(now - m_start).count());
+  }
+
+  const CancelToken* m_cancel;
+  std::function<void()> m_expire;
+  std::function<void(double)> m_report;  // seconds since the pass began
+  bool m_expired = false;
+  std::uint64_t m_calls = 0;
+  std::chrono::steady_clock::time_point m_start = std::chrono::steady_clock::now(), m_last = m_start;
+};
+
+using SliverCriterion = CGAL::Mesh_3::Min_dihedral_angle_criterion<Triangulation>;
+using Perturber = CGAL::Mesh_3::Sliver_perturber<Complex, Domain, SliverCriterion, SliverWatch>;
+using Exuder = CGAL::Mesh_3::Slivers_exuder<Complex, SliverCriterion, SliverWatch>;
+
+// Sliver removal, each pass bounded by its time limit, and by `cancel` within a step (see
+// SliverWatch). CGAL's generator is reseeded so the result depends only on the accepted
+// refinement, not on the attempts before it. Without a token, CGAL's own free functions run:
+// they are the reference the watched passes are tested against. A cancelled run leaves the
+// complex half optimised: the caller checks the token and discards it.
+void remove_slivers(Refinement& r, const TetrahedralizeOptions& options, ProgressSink& sink, const CancelToken* cancel,
+                    double from, double to) {
   using namespace CGAL::parameters;
   CGAL::get_default_random() = CGAL::Random(options.seed);
   sink.report("tetrahedralize", from);
-  CGAL::perturb_mesh_3(r.c3t3, r.domain, time_limit = options.perturb_time_limit_s,
-                       sliver_bound = options.sliver_bound_deg);
-  sink.report("tetrahedralize", from + 0.5 * (to - from));
-  CGAL::exude_mesh_3(r.c3t3, time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg);
+  const double middle = from + 0.5 * (to - from);
+  if (!cancel) {
+    CGAL::perturb_mesh_3(r.c3t3, r.domain, time_limit = options.perturb_time_limit_s,
+                         sliver_bound = options.sliver_bound_deg);
+    sink.report("tetrahedralize", middle);
+    CGAL::exude_mesh_3(r.c3t3, time_limit = options.exude_time_limit_s, sliver_bound = options.sliver_bound_deg);
+    sink.report("tetrahedralize", to);
+    return;
+  }
+  // Progress within a pass: the share of its time limit used, which is its worst case (0.95
+  // at most, the pass may end any time); without a limit, nothing within the pass.
+  const auto reporter = [&sink](double lo, double hi, double limit) {
+    return [&sink, lo, hi, limit](double seconds) {
+      if (limit > 0.0) sink.report("tetrahedralize", lo + (hi - lo) * std::min(0.95, seconds / limit));
+    };
+  };
+  // What perturb_mesh_3 (CGAL/perturb_mesh_3.h, perturb_mesh_3_impl) does, with the watch.
+  {
+    const SliverCriterion criterion(options.sliver_bound_deg, r.c3t3.triangulation());
+    Perturber perturber(r.c3t3, r.domain, criterion);
+    for (auto* perturbation : CGAL::default_perturbation_vector(r.c3t3, r.domain, criterion)) {
+      perturber.add_perturbation(perturbation);  // the perturber owns it
+    }
+    perturber.set_time_limit(options.perturb_time_limit_s);
+    perturber(SliverWatch(
+        cancel, [&perturber] { perturber.set_time_limit(std::numeric_limits<double>::min()); },
+        reporter(from, middle, options.perturb_time_limit_s)));
+  }
+  if (cancel->cancelled()) return;
+  sink.report("tetrahedralize", middle);
+  // What exude_mesh_3 (CGAL/exude_mesh_3.h, exude_mesh_3_impl) does, with the watch.
+  {
+    const SliverCriterion criterion(options.sliver_bound_deg, r.c3t3.triangulation());
+    Exuder exuder(r.c3t3, criterion);
+    exuder.set_time_limit(options.exude_time_limit_s);
+    exuder(SliverWatch(
+        cancel, [&exuder] { exuder.set_time_limit(std::numeric_limits<double>::min()); },
+        reporter(middle, to, options.exude_time_limit_s)));
+  }
+  if (!cancel->cancelled()) sink.report("tetrahedralize", to);
 }
 
 // The complex's cells as a TetMesh, nodes multiplied by `unscale` (a power of two, so exactly).
@@ -414,7 +504,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
         continue;
       }
     }
-    remove_slivers(*refinement, options, sink, optimise_from, to);
+    remove_slivers(*refinement, options, sink, cancel, optimise_from, to);
     if (cancel) cancel->throw_if_cancelled();
     mesh = to_tet_mesh(refinement->c3t3, unscale, source);
     // Perturbation moves boundary nodes along the surface and exudation changes which cells are

@@ -15,7 +15,9 @@ from datetime import datetime, timezone
 
 SECTION_NOTES = {
     "bench_mesh": "CGAL Mesh_3 tetrahedralisation of the 1 × 1 × 0.05 m tile (facet angle 20°, perturb + exude "
-                  "to 12° on the accepted refinement only), one call per size. Target: 24K tets ≤ 1 s.",
+                  "to 12° on the accepted refinement only), one call per size. Target: 24K tets ≤ 1 s. "
+                  "`BM_TetrahedralizeWatched`: the same with a never-raised cancel token, as the CLI calls it "
+                  "(sliver removal through Fissure's watched CGAL passes, same mesh): the cost of watching.",
     "bench_fracture": "The fracture simulation alone (issue 10), body prepared and σ⁰ computed once: "
                       "simulate_fracture per iteration (/b/c/0) and with the visible pattern and its statistics "
                       "(/b/c/1). b = 0: a structured 1 × 1 × 0.02 m tile of 6,912 tets; 1: a 1 × 1 × 0.1 m slab of "

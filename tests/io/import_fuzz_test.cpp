@@ -4,13 +4,16 @@
 // Measured on main (assimp 5.2.5 for every format, forked per file, 400 files each, same kinds
 // of corruption): ASCII OFF crashed on 140, ASCII PLY on 10 and hung (> 3 s, growing memory) on
 // 49, binary PLY crashed on 8 and hung on 39; OBJ, STL, glTF 2.0, GLB and ASCII FBX never
-// crashed. Fissure now reads OBJ, PLY, STL and OFF itself and checks what assimp gets.
+// crashed. Fissure now reads OBJ, PLY, STL and OFF itself and checks what assimp gets. In binary
+// FBX a corrupt count of a compressed array made assimp allocate without bound (10 GB within
+// minutes on one 2.5 kB file; CompressedFbxArraysMustHoldTheirCount).
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/rng.hpp"
 #include "fissure/io/surface_import.hpp"
 
+#include "fbx_binary_writer.hpp"
 #include "surface_files.hpp"
 #include "test_shapes.hpp"
 #include "test_support.hpp"
@@ -23,12 +26,14 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 
 namespace fissure {
 namespace {
@@ -110,11 +115,14 @@ struct Corpus {
   bool binary = false;
   fs::path write_to;   // where each corrupted copy goes
   fs::path import;     // what is imported (a .gltf whose .bin is write_to, or write_to itself)
+  // Aimed corruption used for every other trial besides corrupt()'s (binary FBX: its length
+  // and offset fields).
+  std::function<std::string(std::string, Rng&)> aimed = {};
 };
 
 // glTF 2.0 (.gltf + .bin), GLB and ASCII FBX written by assimp's own exporters from the OBJ.
-// (assimp 5.2.5 cannot re-read its own binary FBX, so binary FBX is checked by the structure
-// tests in AssimpCrashesAreKeptAway only.)
+// (assimp 5.2.5 cannot re-read its own binary FBX: binary FBX comes from the tests' own writer,
+// binary_fbx_corpora.)
 std::vector<Corpus> assimp_corpora(const fs::path& dir) {
   const fs::path source = dir / "source";
   fs::create_directories(source);
@@ -137,6 +145,50 @@ std::vector<Corpus> assimp_corpora(const fs::path& dir) {
           {"ASCII FBX", read_file(source / "l.fbx"), false, dir / "fuzz.fbx", dir / "fuzz.fbx"}};
 }
 
+// The fields a binary FBX reader sizes its reads by, set to values that overflow, wrap or point
+// just past the data: one to three of them per file, and sometimes a corrupt() edit on top.
+std::string corrupt_fbx_fields(std::string bytes, const test::FbxFields& f, Rng& rng) {
+  const std::vector<std::size_t>* kinds[] = {&f.end_offsets, &f.array_counts, &f.compressed_stored_lengths,
+                                             &f.array_stored_lengths, &f.property_bytes, &f.property_counts,
+                                             &f.array_encodings, &f.string_lengths, &f.name_lengths};
+  // The first three kinds (end offsets, array lengths, compressed lengths) are where readers
+  // over-read: they get half of the edits.
+  const int edits = 1 + static_cast<int>(rng.uniform_index(3));
+  for (int e = 0; e < edits; ++e) {
+    const std::size_t kind = rng.uniform_index(2) == 0 ? rng.uniform_index(3) : rng.uniform_index(std::size(kinds));
+    const std::vector<std::size_t>& at = *kinds[kind];
+    if (at.empty()) continue;
+    const std::size_t pos = at[rng.uniform_index(at.size())];
+    const bool wide = f.width == 8 && (kind == 0 || kind == 4 || kind == 5);
+    const std::size_t width = kind == 8 ? 1 : wide ? 8 : 4;
+    std::uint64_t old = 0;
+    std::memcpy(&old, bytes.data() + pos, width);
+    // Huge and "negative" (two's complement), counts whose byte size wraps a 32-bit product
+    // (2^30 × 4, 2^29 × 8 and one more), and small shifts of the true value.
+    const std::uint64_t values[] = {0xFFFFFFFFu, 0x7FFFFFFFu, 0x80000000u, 0u, 1u, 0x40000000u, 0x40000001u,
+                                    0x20000000u, 0x20000001u, 2'000'000'000u, 0xFFFFFFFFFFFFFFFFull,
+                                    0x8000000000000000ull, old + 1, old - 1, old + 13, old * 2, old / 2,
+                                    bytes.size(), bytes.size() + 1};
+    std::uint64_t value = values[rng.uniform_index(std::size(values))];
+    std::memcpy(bytes.data() + pos, &value, width);
+  }
+  return rng.uniform_index(4) == 0 ? corrupt(std::move(bytes), rng, true) : bytes;
+}
+
+// The box of BinaryFbxReadsBack in binary FBX 7.4 and 7.5 (the tests' own writer).
+std::vector<Corpus> binary_fbx_corpora(const fs::path& dir) {
+  const test::Polygons box = test::box_polygons();
+  std::vector<Corpus> out;
+  for (const std::uint32_t version : {7400u, 7500u}) {
+    test::FbxFields fields;
+    const std::string bytes = test::binary_fbx_of(box, Eigen::Vector3d(1, 2, 3), version, &fields);
+    const fs::path path = dir / ("fuzz-" + std::to_string(version) + ".fbx");
+    out.push_back({"binary FBX " + std::to_string(version), bytes, true, path, path,
+                   [fields](std::string b, Rng& rng) { return corrupt_fbx_fields(std::move(b), fields, rng); }});
+  }
+  return out;
+}
+
 void fuzz(const std::vector<Corpus>& corpora, int trials, std::uint64_t seed) {
   const std::size_t rss_before = peak_rss_bytes();
   double slowest = 0.0;
@@ -147,7 +199,8 @@ void fuzz(const std::vector<Corpus>& corpora, int trials, std::uint64_t seed) {
     Rng rng = Rng::derive(seed, c.label);
     int read = 0, refused = 0;
     for (int t = 0; t < trials; ++t) {
-      test::write_test_file(c.write_to, corrupt(c.original, rng, c.binary));
+      const bool aim = c.aimed && t % 2 == 1;
+      test::write_test_file(c.write_to, aim ? c.aimed(c.original, rng) : corrupt(c.original, rng, c.binary));
       const auto start = std::chrono::steady_clock::now();
       (import_outcome(c.import) == Outcome::Read ? read : refused)++;
       slowest = std::max(slowest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -182,10 +235,16 @@ TEST(ImportFuzz, AssimpFormatsNeverCrash) {
   fuzz(assimp_corpora(dir), 400, 2027);
 }
 
+TEST(ImportFuzz, BinaryFbxNeverCrashes) {
+  const fs::path dir = test::fresh_temp_dir("import-fuzz-binary-fbx");
+  fuzz(binary_fbx_corpora(dir), 2000, 2029);
+}
+
 // How raw assimp (main's call, without Fissure's checks) fares on a file, in a child process so
 // that its crash cannot take the test down: 0 read, 1 refused, 2 crashed (a signal, or the exit
-// code AddressSanitizer uses after catching one).
-int raw_assimp_in_child(const fs::path& path) {
+// code AddressSanitizer uses after catching one). `peak_rss`, when given, receives the child's
+// peak resident memory.
+int raw_assimp_in_child(const fs::path& path, std::size_t* peak_rss = nullptr) {
   std::fflush(nullptr);
   const pid_t pid = fork();
   if (pid == 0) {
@@ -200,7 +259,9 @@ int raw_assimp_in_child(const fs::path& path) {
     _exit(scene ? 10 : 11);
   }
   int status = 0;
-  waitpid(pid, &status, 0);
+  rusage usage{};
+  wait4(pid, &status, 0, &usage);
+  if (peak_rss) *peak_rss = static_cast<std::size_t>(usage.ru_maxrss) * 1024;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 10) return 0;
   if (WIFEXITED(status) && WEXITSTATUS(status) == 11) return 1;
   return 2;
@@ -293,6 +354,76 @@ TEST(ImportFuzz, AssimpCrashesAreKeptAway) {
   }
   std::printf("raw assimp crashed on %d of 150 corrupted glTF 1.0 GLB files; Fissure refused all\n", crashes);
   EXPECT_GT(crashes, 0) << "assimp's glTF 1.0 reader no longer crashes: glTF 1.0 could be accepted again";
+}
+
+// A zlib-compressed binary FBX array is inflated into a buffer of count × element size bytes
+// that assimp allocates and zeroes before inflating: PolygonVertexIndex claiming 2^31 − 1 ints
+// in the 2.5 kB box file took 4.2 GB and 14 s in `assimp info` (found by BinaryFbxNeverCrashes,
+// which reached 10 GB), and a stream shorter than its count is padded with zeros: raw assimp
+// reads the box claiming 2^26 indices, 24 of them real, as the box, after 24 s and 3.5 GB (its
+// mesh then holds a polygon vertex per claimed index). Shown here with 2^21 (over 32 MB);
+// Fissure inflates each compressed array first and refuses any whose count is not what its
+// stream holds, naming the array.
+TEST(ImportFuzz, CompressedFbxArraysMustHoldTheirCount) {
+  const fs::path dir = test::fresh_temp_dir("import-fbx-inflate");
+  const std::string box = test::binary_fbx_of(test::box_polygons(), Eigen::Vector3d::Zero());
+  const std::size_t record = box.find("PolygonVertexIndex");
+  ASSERT_NE(record, std::string::npos);
+  const std::size_t count_at = record + 18 + 1;  // after the name and the type code 'i'
+  ASSERT_EQ(box[count_at - 1], 'i');
+  std::uint32_t count = 0, stored = 0;
+  std::memcpy(&count, box.data() + count_at, 4);
+  std::memcpy(&stored, box.data() + count_at + 8, 4);
+  ASSERT_EQ(count, 24u);  // six quads
+  auto with = [&](std::size_t at, std::uint32_t value) {
+    std::string bytes = box;
+    std::memcpy(bytes.data() + at, &value, 4);
+    return bytes;
+  };
+  // The child's peak includes what it inherits from this process: compared with the intact file's.
+  test::write_test_file(dir / "intact.fbx", box);
+  test::write_test_file(dir / "large.fbx", with(count_at, 1u << 21));
+  std::size_t intact_peak = 0, raw_peak = 0;
+  EXPECT_EQ(raw_assimp_in_child(dir / "intact.fbx", &intact_peak), 0);
+  EXPECT_EQ(raw_assimp_in_child(dir / "large.fbx", &raw_peak), 0) << "assimp no longer pads a short stream";
+  // 2^21 claimed indices: 8 MB of buffer, as much again parsed, 24 MB of polygon vertices, …
+  EXPECT_GT(raw_peak, intact_peak + (std::size_t{32} << 20))
+      << "assimp no longer allocates a compressed array's claimed size up front (the inflate check may go)";
+  std::printf("raw assimp on a 2.5 kB file claiming 2^21 compressed ints: read it, peak +%.0f MB over the intact file\n",
+              (static_cast<double>(raw_peak) - static_cast<double>(intact_peak)) / 1e6);
+
+  auto refused = [&](const std::string& file, const std::string& bytes, const std::string& words) {
+    test::write_test_file(dir / file, bytes);
+    SurfaceRepairReport report;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      import_surface(dir / file, report);
+      ADD_FAILURE() << file << " was read";
+    } catch (const IoError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind((dir / file).string() + ": corrupt FBX: an array of ", 0), 0u) << what;
+      EXPECT_NE(what.find(words), std::string::npos) << what;
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5) << file;
+  };
+  const std::string array = "('i', byte " + std::to_string(count_at - 1) + ") stored compressed in " + std::to_string(stored) +
+                            " bytes ";
+  refused("huge.fbx", with(count_at, 0x7FFFFFFFu), array + "inflates to 96 bytes, not the 8589934588 its count needs");
+  refused("large.fbx", with(count_at, 1u << 21), array + "inflates to 96 bytes, not the 8388608 its count needs");
+  // One value more than the stream holds: assimp would pad it with a 0, an extra index.
+  refused("one-more.fbx", with(count_at, count + 1), "inflates to 96 bytes, not the 100 its count needs");
+  refused("one-less.fbx", with(count_at, count - 1), "inflates to at least 96 bytes, not the 92 its count needs");
+  // The stream cut short (its stored length says 10 bytes fewer, the record's lengths agree).
+  std::string cut = box;
+  cut.erase(count_at + 12 + stored - 10, 10);
+  std::uint32_t v = stored - 10;
+  std::memcpy(cut.data() + count_at + 8, &v, 4);
+  for (const std::size_t field : {record - 1 - 3 * 4, record - 1 - 4}) {  // the record's end offset and property bytes
+    std::memcpy(&v, cut.data() + field, 4);
+    v -= 10;
+    std::memcpy(cut.data() + field, &v, 4);
+  }
+  refused("cut.fbx", cut, "is not a complete zlib stream");
 }
 
 }  // namespace

@@ -45,6 +45,15 @@ inline Polygons l_prism_polygons() {
   return p;
 }
 
+/// A 1 × 2 × 3 m box with a corner at the origin as six quads: 8 vertices, volume 6 m³.
+inline Polygons box_polygons() {
+  Polygons box;
+  box.vertices.resize(8, 3);
+  for (int v = 0; v < 8; ++v) box.vertices.row(v) << (v & 1) * 1.0, (v >> 1 & 1) * 2.0, (v >> 2 & 1) * 3.0;
+  box.faces = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  return box;
+}
+
 inline std::string to_obj(const Polygons& p) {
   std::ostringstream out;
   out.precision(17);

@@ -312,6 +312,126 @@ TEST(Tetrahedralize, CancelFromAnotherThreadStopsRefinement) {
   EXPECT_LT(ended - cancelled_at, std::chrono::seconds(2));
 }
 
+// Sliver removal reads the cancel token through a watch on CGAL's perturber and exuder (their
+// free functions read none). Without a cancel the watched passes must give CGAL's own result:
+// the same nodes and tets, bit for bit, as the free functions (which run when no token is
+// given). Sliver removal must change this mesh, or the comparison would prove nothing.
+TEST(Tetrahedralize, SliverRemovalWatchKeepsTheMesh) {
+  TetrahedralizeOptions options;
+  options.target_tets = 24000;
+  // No time limits: a pass stopped by the clock (10 s, reached under AddressSanitizer on larger
+  // meshes) would end at a different step in each run.
+  options.perturb_time_limit_s = 0.0;
+  options.exude_time_limit_s = 0.0;
+  const SurfaceMesh tile = make_tile_surface({1, 1, 0.05});
+  CancelToken never;
+  TetrahedralizeReport plain_report, watched_report;
+  const TetMesh plain = tetrahedralize(tile, options, &plain_report);
+  const TetMesh watched = tetrahedralize(tile, options, &watched_report, nullptr, &never);
+  ASSERT_EQ(plain.node_count(), watched.node_count());
+  ASSERT_EQ(plain.tet_count(), watched.tet_count());
+  EXPECT_TRUE(plain.nodes() == watched.nodes()) << "node coordinates differ";
+  EXPECT_TRUE(plain.tets() == watched.tets()) << "tets differ";
+  options.sliver_bound_deg = 1e-6;  // nothing is a sliver: perturbation and exudation do nothing
+  options.refuse_below_dihedral_deg = 0.0;
+  const TetMesh unoptimised = tetrahedralize(tile, options, nullptr, nullptr, &never);
+  EXPECT_FALSE(unoptimised.node_count() == plain.node_count() && unoptimised.nodes() == plain.nodes() &&
+               unoptimised.tets() == plain.tets())
+      << "sliver removal changed nothing: the comparison above is vacuous";
+  std::printf("min dihedral %.2f deg with sliver removal, %.2f deg without\n", plain_report.quality.min_dihedral_deg,
+              unoptimised.quality().min_dihedral_deg);
+}
+
+// Times the two sliver removal passes of the first attempt from its progress reports (its
+// refinement reports below 0.4 · 0.95; perturbation runs in [0.4, 0.45), exudation in
+// [0.45, 0.5), a second attempt from 0.5 on), and raises `cancel` `delay` after the start of
+// pass `cancel_in` (0 perturbation, 1 exudation), from another thread (at once when 0).
+class SliverPassProgress final : public ProgressSink {
+public:
+  SliverPassProgress(CancelToken* cancel, int cancel_in, std::chrono::milliseconds delay)
+      : m_cancel(cancel), m_cancel_in(cancel_in), m_delay(delay) {}
+  ~SliverPassProgress() override { join(); }
+  void report(std::string_view, double fraction) override {
+    const auto now = std::chrono::steady_clock::now();
+    const double starts[] = {0.4, 0.45, 0.5};
+    for (int k = 0; k < 3; ++k) {
+      if (fraction < starts[k] || m_seen[k]) continue;
+      m_seen[k] = true;
+      pass_start[k] = now;
+      if (m_cancel && k == m_cancel_in && m_delay.count() == 0) {
+        cancelled_at = now;
+        m_cancel->cancel();
+      } else if (m_cancel && k == m_cancel_in) {
+        m_canceller = std::thread([this] {
+          std::this_thread::sleep_for(m_delay);
+          cancelled_at = std::chrono::steady_clock::now();
+          m_cancel->cancel();
+        });
+      }
+    }
+  }
+  void join() {
+    if (m_canceller.joinable()) m_canceller.join();
+  }
+  std::chrono::milliseconds pass_time(int k) const {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(pass_start[k + 1] - pass_start[k]);
+  }
+  std::chrono::steady_clock::time_point pass_start[3], cancelled_at;
+
+private:
+  CancelToken* m_cancel;
+  int m_cancel_in;
+  std::chrono::milliseconds m_delay;
+  bool m_seen[3] = {false, false, false};
+  std::thread m_canceller;
+};
+
+// A cancel raised during sliver removal ends the call within 0.5 s. Main read the token only
+// after both passes, so the cancel waited for the rest of them (up to their 10 s time limits).
+// On the 1 × 1 × 0.05 m tile at 150K tets perturbation takes about a second: the cancel comes
+// a third into it, so main would have taken over 0.5 s more. Exudation takes 16 ms after it
+// (150 ms with perturbation cut to 1 ms), too short to time a cancel inside it: a cancel
+// raised as it starts must stop it, on a 50K mesh.
+TEST(Tetrahedralize, CancelDuringSliverRemovalIsPrompt) {
+#if defined(__SANITIZE_ADDRESS__)
+  // A timing test: under AddressSanitizer perturbation runs into its 10 s limit and the test
+  // takes 70 s; the watched passes themselves run there in SliverRemovalWatchKeepsTheMesh.
+  GTEST_SKIP() << "timing test, skipped under AddressSanitizer";
+#endif
+  const SurfaceMesh tile = make_tile_surface({1, 1, 0.05});
+  {
+    TetrahedralizeOptions options;
+    options.target_tets = 100000;
+    options.sliver_bound_deg = 15.0;
+    SliverPassProgress timing(nullptr, -1, {});
+    TetrahedralizeReport report;
+    tetrahedralize(tile, options, &report, &timing);
+    ASSERT_EQ(report.attempts, 1);
+    std::printf("uncancelled: perturbation %lld ms, exudation %lld ms\n", static_cast<long long>(timing.pass_time(0).count()),
+                static_cast<long long>(timing.pass_time(1).count()));
+    ASSERT_GT(timing.pass_time(0), std::chrono::milliseconds(800)) << "perturbation too short to test";
+    CancelToken cancel;
+    SliverPassProgress progress(&cancel, 0, timing.pass_time(0) / 3);
+    EXPECT_THROW(tetrahedralize(tile, options, nullptr, &progress, &cancel), Cancelled);
+    const auto ended = std::chrono::steady_clock::now();
+    progress.join();
+    const double latency = std::chrono::duration<double>(ended - progress.cancelled_at).count();
+    std::printf("cancel a third into perturbation: Cancelled %.1f ms later\n", 1e3 * latency);
+    EXPECT_LT(latency, 0.5);
+  }
+  {
+    TetrahedralizeOptions options;
+    options.target_tets = 50000;
+    options.perturb_time_limit_s = 1e-3;
+    CancelToken cancel;
+    SliverPassProgress progress(&cancel, 1, std::chrono::milliseconds(0));
+    EXPECT_THROW(tetrahedralize(tile, options, nullptr, &progress, &cancel), Cancelled);
+    const double latency = std::chrono::duration<double>(std::chrono::steady_clock::now() - progress.cancelled_at).count();
+    std::printf("cancel as exudation starts: Cancelled %.1f ms later\n", 1e3 * latency);
+    EXPECT_LT(latency, 0.5);
+  }
+}
+
 // The surface check must not refuse a legitimate mesh of a curved surface, where the tet
 // boundary only approximates the input, coarse or fine.
 TEST(Tetrahedralize, CurvedSurfacePassesTheFillCheck) {
