@@ -18,6 +18,7 @@
 // parameters and seed (so the two modes are paired):
 //  - the 32 corners of the 5-D box, seed 1 (one resistance field and noise for every corner, so
 //    the differences between corners are the parameters'); a PNG of each into --images;
+//  - the centre of the box and each parameter alone at its low and high end (seed 1, PNGs);
 //  - N uniform draws from the box, draw i with its own seed.
 // Each run's visible pattern is measured by compute_pattern_stats (the fit's statistics, on the
 // geometry, at the fit's reference resolution) and compared by Eq. 5 with every exemplar given.
@@ -339,6 +340,22 @@ int run(const Args& args) {
       bits += high ? 'H' : 'L';
     }
     runner.run("corner", c, v, box, 1, "prior-" + bits, out);
+  }
+  // One parameter at a time: the centre of the box, then each parameter at its low and high end
+  // with the others at the centre (seed 1). The corners mostly show the two extremes of dσ_e
+  // (unbroken, or driven far past R_cm); these show what each parameter does on its own.
+  const char* const kSymbols[] = {"dse", "rrelax", "vrelax", "rcvar", "l"};
+  for (int a = 0; a < (args.corners ? 11 : 0); ++a) {
+    std::array<double, 5> v{};
+    for (std::size_t k = 0; k < 5; ++k) v[k] = 0.5 * (box.lo[k] + box.hi[k]);
+    std::string stem = "prior-mid";
+    if (a > 0) {
+      const std::size_t k = static_cast<std::size_t>((a - 1) / 2);
+      const bool high = (a - 1) % 2 == 1;
+      v[k] = high ? box.hi[k] : box.corner_lo[k];
+      stem += std::string("-") + kSymbols[k] + (high ? "-high" : "-low");
+    }
+    runner.run("axis", a, v, box, 1, stem, out);
   }
   for (int i = 0; i < args.draws; ++i) {
     Rng rng = Rng::derive(args.seed, "prior_draw", static_cast<std::uint64_t>(i));
