@@ -248,9 +248,16 @@ public:
                           {"partial_cracks", result.partial_cracks.size()},
                           {"fragments_3d", result.fragments.count},
                           {"seconds", seconds}};
-      nlohmann::ordered_json eq5;
-      for (const Exemplar& e : m_exemplars) eq5[e.name] = pattern_similarity(stats, e.stats).total;
+      // The total (weights 3, 1, 1) and its unweighted EMD terms, so the report can say which
+      // statistic keeps a draw from an exemplar.
+      nlohmann::ordered_json eq5, terms;
+      for (const Exemplar& e : m_exemplars) {
+        const Similarity d = pattern_similarity(stats, e.stats);
+        eq5[e.name] = d.total;
+        terms[e.name] = {d.fragment, d.crack, d.junction};
+      }
       line["eq5"] = eq5;
+      line["eq5_terms"] = terms;
       if (!image_stem.empty() && !m_args.images.empty()) {
         PatternImageOptions image;
         image.long_side_px = m_args.image_size;

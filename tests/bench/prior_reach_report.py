@@ -126,10 +126,12 @@ def main():
       "(Fissure's analysis; in brackets the independent reference's, ref-stats), then its percentile "
       "rank among the draws, or *above* / *below* when it lies outside every draw. *Joint*: draws "
       "within ±25 % fragments, ±0.15 T fraction, ±7.5° angle and ±0.15 std log10 area of it at once. "
-      "*Best Eq. 5*: the smallest Eq. 5 distance of any of its draws (what the paper's ABC keeps; "
-      "an exemplar is 0.004–0.036 from its own reference statistics and the two closest different "
-      "exemplars are 0.053 apart, docs/exemplar.md).\n")
-    w("| exemplar | scale (m) | mode | draws | fragments | T fraction | mean angle (°) | std log10 area | joint | best Eq. 5 (its draw's box fractions) |")
+      "*Best Eq. 5*: the smallest Eq. 5 distance of any of its draws (what the paper's ABC keeps), "
+      "as 3·EMD(fragment areas) + EMD(crack lengths) + EMD(junction densities), and that draw's "
+      "position in the box (fractions of dσ_e, r_relax, v_relax, R_cvar, l). For scale: an exemplar "
+      "is 0.004–0.036 from its own reference statistics and the two closest different exemplars "
+      "are 0.053 apart (docs/exemplar.md).\n")
+    w("| exemplar | scale (m) | mode | draws | fragments | T fraction | mean angle (°) | std log10 area | joint | best Eq. 5 = terms (its draw's box fractions) |")
     w("|---|---|---|---|---|---|---|---|---|---|")
     verdicts = []
     for e in exemplars:
@@ -155,8 +157,12 @@ def main():
             cells.append(f"{fmt(name, x)} ({fmt(name, ref[name])}): {place}")
         joint = sum(1 for r in own if all(within(n, r["stats"][n], e["stats"][n]) for n in FOUR))
         best = min(own, key=lambda r: r["eq5"][e["name"]]) if own else None
-        best_text = (f"{best['eq5'][e['name']]:.3f} ("
-                     + ", ".join(f"{best['box_fraction'][p]:.2f}" for p in PARAMS) + ")") if best else "–"
+        if best:
+            fa, cr, ju = best["eq5_terms"][e["name"]]
+            best_text = (f"{best['eq5'][e['name']]:.3f} = 3·{fa:.3f} + {cr:.3f} + {ju:.3f} ("
+                         + ", ".join(f"{best['box_fraction'][p]:.2f}" for p in PARAMS) + ")")
+        else:
+            best_text = "–"
         w(f"| {e['name']} | {e['fragment_scale_m']:.3f} | {mode} | {len(own)} | " + " | ".join(cells)
           + f" | {joint} | {best_text} |")
         verdicts.append((e["name"], outside, joint))
