@@ -239,5 +239,25 @@ TEST(FractureSimulation, BadInputsNameTheCulprit) {
             std::string::npos);
 }
 
+// Equi-biaxial tension (the in-plane stress increase alone, one resistance everywhere): the
+// largest principal stress is repeated, so any in-plane direction is a principal one. The
+// eigensolver alone always returned the same axis and the plate filled with parallel cracks
+// (mean junction angle 10°); the direction is drawn in that plane instead, so the normals
+// spread: for uniform angles the mean |cos| between two normals is 2/π ≈ 0.64, for parallel
+// cracks 1.
+TEST(FractureSimulation, RepeatedPrincipalStressOpensCracksInEveryDirection) {
+  PlateCase plate(5);
+  plate.resistance.setConstant(plate.params.resistance_mean);
+  plate.params.relax_rate = 0.0;  // nothing breaks the symmetry of the stress
+  plate.params.age = 2.0;
+  const FractureResult r = plate.run(3);
+  ASSERT_GE(r.cracks.size(), 10u);
+  double sum = 0.0;
+  int pairs = 0;
+  for (std::size_t i = 0; i < r.cracks.size(); ++i)
+    for (std::size_t j = i + 1; j < r.cracks.size(); ++j, ++pairs) sum += std::abs(r.cracks[i].normal.dot(r.cracks[j].normal));
+  EXPECT_LT(sum / pairs, 0.8) << r.cracks.size() << " cracks";
+}
+
 }  // namespace
 }  // namespace fissure
