@@ -231,15 +231,23 @@ void BM_ModalStress(benchmark::State& state) {
     compute_principal_stress(l.body->elastic_body(), u, recovery, field);
     benchmark::DoNotOptimize(field.stress.data());
   }
-  static std::map<std::pair<int, bool>, PatternError> errors;
-  const auto key = std::make_pair(m, precision == ModalPrecision::Single);
-  if (errors.find(key) == errors.end()) errors[key] = pattern_error(patterns_of(l, field.stress), l.reference_patterns);
+  // Patterns per (m, single); the double rows run first, so a single row finds its double twin.
+  static std::map<std::pair<int, bool>, std::vector<PatternStats>> patterns;
+  const bool single = precision == ModalPrecision::Single;
+  const auto key = std::make_pair(m, single);
+  if (patterns.find(key) == patterns.end()) patterns[key] = patterns_of(l, field.stress);
+  const PatternError e = pattern_error(patterns[key], l.reference_patterns);
+  // Single precision moves σ⁰ by ~1e-6 relative: its distance to the double twin is what a
+  // perturbation far below any modelling error does to the pattern (the sensitivity floor).
+  const auto twin = patterns.find(std::make_pair(m, false));
+  if (single && twin != patterns.end())
+    state.counters["eq5_to_double"] = pattern_error(patterns[key], twin->second).eq5;
   state.counters["tets"] = l.mesh->tet_count();
   state.counters["modes"] = m;
-  state.counters["single_precision"] = precision == ModalPrecision::Single;
+  state.counters["single_precision"] = single;
   state.counters["eigensolve_s"] = b.eigensolve_s;
   state.counters["sigma0_err_pct"] = 100.0 * field_error(l, field.max_principal);
-  set_pattern_counters(state, l, errors[key]);
+  set_pattern_counters(state, l, e);
 }
 BENCHMARK(BM_ModalStress)
     ->ArgNames({"modes", "single"})
