@@ -220,8 +220,7 @@ public:
     FractureParams p = m_base;
     for (std::size_t k = 0; k < 5; ++k) parameter_value(p, box.row[k]) = values[k];
     const StressField initial = m_body.prepared->initial_stress(p);
-    const Eigen::VectorXd resistance = draw_resistance(static_cast<std::size_t>(m_body.prepared->mesh().tet_count()),
-                                                       p.resistance_mean, p.resistance_stddev, seed);
+    const Eigen::VectorXd resistance = draw_resistance(m_body.prepared->mesh().centroids(), p, seed);
     for (RelaxationChoice mode : {RelaxationChoice::Directional, RelaxationChoice::Isotropic}) {
       p.relaxation = mode;
       const auto start = std::chrono::steady_clock::now();
