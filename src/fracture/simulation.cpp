@@ -49,14 +49,20 @@ double tangent_max(const Voigt& s, const Eigen::Vector3d& n) {
 // resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
 // rule for cracks due at one instant, e.g. at t = 0), then by the tet's centroid (x, then y,
 // then z), so the order is the body's, not its numbering's (ElementOrder tests).
+// x, then y, then z: the order of tied tets by their centroids, distinct for distinct tets.
+bool position_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+}
+
 struct Event {
   double time;
   double neg_ratio;
   Eigen::Vector3d where;  // the tet's centroid: distinct for distinct tets, whatever their numbering
   int tet;
   bool operator>(const Event& o) const {
-    return std::tie(time, neg_ratio, where.x(), where.y(), where.z()) >
-           std::tie(o.time, o.neg_ratio, o.where.x(), o.where.y(), o.where.z());
+    if (time != o.time) return time > o.time;
+    if (neg_ratio != o.neg_ratio) return neg_ratio > o.neg_ratio;
+    return position_before(o.where, where);
   }
 };
 
@@ -174,10 +180,7 @@ private:
 
   // Ties between tets at one instant with one ratio: the lower centroid (x, then y, then z)
   // first, so the choice is the body's, not the numbering's.
-  bool before(int a, int b) const {
-    const Eigen::Vector3d ca = m_mesh.centroid(a), cb = m_mesh.centroid(b);
-    return std::tie(ca.x(), ca.y(), ca.z()) < std::tie(cb.x(), cb.y(), cb.z());
-  }
+  bool before(int a, int b) const { return position_before(m_mesh.centroid(a), m_mesh.centroid(b)); }
 
   bool resolve_directional() const {
     switch (m_params.relaxation) {
@@ -355,6 +358,7 @@ private:
         const auto nodes_u = tet_nodes(u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
         const CrackCut* u_clip = nullptr;
+        std::vector<Eigen::Vector3d> polygon;  // this crack's polygon in u, clipped at a T
         if (!earlier.empty()) {
           // Crack meets crack: end on the side it arrived from (the side holding the middle of
           // its trace on the shared face) of the crack it runs into first. Where several earlier
@@ -370,16 +374,19 @@ private:
             // P1 values of that crack are shared across the face).
             trial.clip_side =
                 clip && i == clipped.clipped_by ? clipped.clip_side : arrival_side(tet, f, u, k, surface, other);
-            const double remaining = detail::polygon_area(crack_polygon(nodes_u, trial, &other));
+            auto trial_polygon = crack_polygon(nodes_u, trial, &other);
+            const double remaining = detail::polygon_area(trial_polygon);
             if (remaining < least) {
               least = remaining;
               cut.clipped_by = i;
               cut.clip_side = trial.clip_side;
               u_clip = &other;
+              polygon = std::move(trial_polygon);
             }
           }
         }
-        const auto [gain, a_e] = release(u, crack_polygon(nodes_u, cut, u_clip));
+        if (!u_clip) polygon = crack_polygon(nodes_u, cut);
+        const auto [gain, a_e] = release(u, polygon);
         // Arrest here when u would take the path's budget below zero (another path may still
         // reach u), unless the tip is closing a junction: entering a tet of the crack it runs
         // into, or closing in on an earlier crack a few element sizes away (the earlier crack's
@@ -556,7 +563,6 @@ private:
       std::swap(m_hop_frontier, m_hop_next);
     }
   }
-
 
   const FractureBody& m_body;
   const TetMesh& m_mesh;

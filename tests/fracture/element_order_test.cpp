@@ -210,6 +210,20 @@ std::shared_ptr<const TetMesh> small_tile() {
   return std::make_shared<const TetMesh>(tetrahedralize(make_tile_surface({0.3, 0.3, 0.02}), options));
 }
 
+// The default material and scenario on `mesh`: recovered static stress, one resistance draw per
+// tet (by index: the test renumbers it with its tet), `seed` for both.
+Problem default_problem(std::shared_ptr<const TetMesh> mesh, std::uint64_t seed) {
+  Problem p;
+  p.mesh = std::move(mesh);
+  p.params = load_material(find_material(kDefaultMaterialName)).params;
+  const PreparedBody body(p.mesh, p.params.elastic(), FractureScenario{});
+  p.initial = body.initial_stress(p.params);
+  p.resistance = draw_resistance(static_cast<std::size_t>(p.mesh->tet_count()), p.params.resistance_mean,
+                                 p.params.resistance_stddev, seed);
+  p.seed = seed;
+  return p;
+}
+
 // The default scenario on an unstructured (CGAL) tile with the default material: recovered
 // static stress, resistance drawn from N(R_cm, R_cvar), relaxation and noise on. No two events
 // share an instant and a ratio, so the event order never falls back on a tie rule. The mesh does
@@ -217,14 +231,7 @@ std::shared_ptr<const TetMesh> small_tile() {
 // faces (8 of the ≈ 4K), whose nearest surface normal the propagation settles in the order the
 // tet's faces are offered — its local face order, which renumbering keeps.
 TEST(ElementOrder, WithoutTiesTheFractureIsTheSameUnderAnyNumbering) {
-  Problem p;
-  p.mesh = small_tile();
-  p.params = load_material(find_material(kDefaultMaterialName)).params;
-  const PreparedBody body(p.mesh, p.params.elastic(), FractureScenario{});
-  p.initial = body.initial_stress(p.params);
-  p.resistance = draw_resistance(static_cast<std::size_t>(p.mesh->tet_count()), p.params.resistance_mean,
-                                 p.params.resistance_stddev, 7);
-  p.seed = 7;
+  Problem p = default_problem(small_tile(), 7);
   EXPECT_GE(expect_body_data_follow_their_tets(p.mesh), 1) << "no distance ties left to test";
   expect_independent_of_numbering(p, 20);
 }
@@ -258,14 +265,7 @@ TEST(ElementOrder, WithTiesAtTimeZeroTheFractureIsTheSameUnderAnyNumbering) {
 // equal distances, ordered by tet index among themselves. With the default material's stress and
 // resistance field, so events themselves do not tie.
 TEST(ElementOrder, WithTiesInDistancesTheFractureIsTheSameUnderAnyNumbering) {
-  Problem p;
-  p.mesh = test::plate_mesh({0.3, 0.3, 0.02}, 24, 24, 2);
-  p.params = load_material(find_material(kDefaultMaterialName)).params;
-  const PreparedBody body(p.mesh, p.params.elastic(), FractureScenario{});
-  p.initial = body.initial_stress(p.params);
-  p.resistance = draw_resistance(static_cast<std::size_t>(p.mesh->tet_count()), p.params.resistance_mean,
-                                 p.params.resistance_stddev, 5);
-  p.seed = 5;
+  Problem p = default_problem(test::plate_mesh({0.3, 0.3, 0.02}, 24, 24, 2), 5);
   expect_body_data_follow_their_tets(p.mesh);
   // The ties: a few dozen distinct surface distances among the 6912 tets.
   const FractureBody body_data(p.mesh);

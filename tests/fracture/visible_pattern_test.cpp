@@ -429,7 +429,7 @@ TEST(VisiblePattern, BadInputIsRefusedNamingTheCulprit) {
 //   which the drawing closes into junctions and fragments the geometry does not have, and
 //   slivers narrower than a line vanish from the drawing. Each moves a count by one; measured
 //   differences are 1–4 % of the fragments and 1–5 % of the junctions here, up to 6 % and 8 % on
-//   CGAL tiles of 7K–24K tets and glass (docs/fracture.md);
+//   CGAL tiles of 7K–24K tets and glass (`fissure fracture --pattern`, then `fissure analyze`);
 // - free ends: the drawing closes gaps, so it has fewer, except where a branch shorter than a
 //   line width leaves a junction and reads as an end: at most 2 more (measured: up to 1);
 // - Eq. 5 below 0.053, the distance between the two closest different shared exemplars

@@ -5,6 +5,8 @@
 
 #include "fissure/mesh/surface_mesh.hpp"
 
+#include "../support/test_shapes.hpp"  // surface_from
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -14,17 +16,6 @@
 #include <vector>
 
 namespace fissure::test {
-
-inline SurfaceMesh surface_from(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f,
-                                const char* name) {
-  SurfaceMesh s;
-  s.source_name = name;
-  s.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  s.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (std::size_t i = 0; i < f.size(); ++i) s.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
-  return s;
-}
 
 /// An icosphere of radius 1 (20 · 4^levels faces), outward-oriented: a curved surface whose
 /// edges (dihedral deviation ≈ 10° at 3 levels) are below the feature angle, so the tet boundary

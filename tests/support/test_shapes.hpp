@@ -13,6 +13,18 @@
 
 namespace fissure::test {
 
+/// A surface from vertex and triangle lists (as given: no orientation fix).
+inline SurfaceMesh surface_from(const std::vector<Eigen::Vector3d>& v, const std::vector<Eigen::Vector3i>& f,
+                                const std::string& name) {
+  SurfaceMesh s;
+  s.source_name = name;
+  s.vertices.resize(static_cast<Eigen::Index>(v.size()), 3);
+  for (std::size_t i = 0; i < v.size(); ++i) s.vertices.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
+  s.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
+  for (std::size_t i = 0; i < f.size(); ++i) s.faces.row(static_cast<Eigen::Index>(i)) = f[i].transpose();
+  return s;
+}
+
 /// An L-shaped prism, outward-oriented: the L (0,0)-(2,0)-(2,1)-(1,1)-(1,2)-(0,2) extruded from
 /// z = 0 to 0.5; volume 1.5 m³; non-convex.
 inline SurfaceMesh l_prism() {
@@ -73,12 +85,7 @@ inline SurfaceMesh revolve_profile(const std::vector<std::pair<double, double>>&
       if (!b_axis) faces.emplace_back(at(i, j), at(k, j + 1), at(k, j));
     }
   }
-  SurfaceMesh s;
-  s.source_name = name;
-  s.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  for (std::size_t v = 0; v < vertices.size(); ++v) s.vertices.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
-  s.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) s.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  SurfaceMesh s = surface_from(vertices, faces, name);
   if (signed_volume(s) < 0.0) s.faces.col(1).swap(s.faces.col(2));
   return s;
 }
