@@ -4,6 +4,7 @@
 #include "nearest_seed.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace fissure {
@@ -41,15 +42,20 @@ FractureBody::FractureBody(std::shared_ptr<const TetMesh> mesh) : m_mesh(std::mo
   }
 
   // Mean edge length over the six edges of every tet (interior edges counted once per tet that
-  // holds them: a volume-weighted-ish mean, stable and cheap).
-  double sum = 0.0;
+  // holds them: a volume-weighted-ish mean, stable and cheap). Summed in fixed point, in units of
+  // 2⁻³² of the bounding box's diagonal (an edge is at most 2³² units; 3·10⁸ tets fit in 63 bits),
+  // so the sum is exact and the same bits in any tet order: crack paths step by it, and a
+  // renumbered mesh must fracture the same (ElementOrder tests).
+  const auto box = m.bounding_box();
+  const double unit = (box.row(1) - box.row(0)).norm() * 0x1p-32;
+  std::int64_t sum = 0;
   const auto& tets = m.tets();
   for (Eigen::Index t = 0; t < n; ++t) {
     for (int a = 0; a < 4; ++a) {
-      for (int b = a + 1; b < 4; ++b) sum += (nodes.row(tets(t, a)) - nodes.row(tets(t, b))).norm();
+      for (int b = a + 1; b < 4; ++b) sum += std::llround((nodes.row(tets(t, a)) - nodes.row(tets(t, b))).norm() / unit);
     }
   }
-  m_mean_edge = sum / (6.0 * static_cast<double>(n));
+  m_mean_edge = static_cast<double>(sum) * unit / (6.0 * static_cast<double>(n));
 }
 
 }  // namespace fissure

@@ -47,6 +47,10 @@ std::vector<ParameterInfo> build_table() {
        "Length over which the element resistance varies (a correlated random field, the same on any mesh of "
        "the body); 0: an independent draw per element",
        "not in the paper (mesh independence, docs/fracture.md)"},
+      {"crack_turning", "--crack-turning", "", 0.0, 1.0, false, false, d.crack_turning,
+       "How readily a running crack turns toward the local max principal stress direction: over a length "
+       "r_relax*(1-b)/b (0: never, the paper's plane; 1: at once)",
+       "not in the paper (crack paths, docs/fracture.md); Erdogan-Sih's maximum tangential stress"},
       {"age", "--age", "age units", 0.0, 1e4, false, false, d.age,
        "Duration of the stress-map evolution (Algorithm 1); the stress rate is per age unit",
        "Table 2 (IN)"},
@@ -98,6 +102,7 @@ enum Row : std::size_t {
   kResistanceMean,
   kFractureToughness,
   kResistanceCorrelation,
+  kCrackTurning,
   kAge,
   kStressRate,
   kRelaxRadius,
@@ -133,6 +138,7 @@ double& parameter_value(FractureParams& p, std::size_t row) {
     case kResistanceMean: return p.resistance_mean;
     case kFractureToughness: return p.fracture_toughness;
     case kResistanceCorrelation: return p.resistance_correlation;
+    case kCrackTurning: return p.crack_turning;
     case kAge: return p.age;
     case kStressRate: return p.stress_rate;
     case kRelaxRadius: return p.relax_radius;

@@ -5,6 +5,7 @@
 #include "fissure/base/rng.hpp"
 #include "fissure/exemplar/pattern_stats.hpp"
 #include "fissure/fracture/crack_noise.hpp"
+#include "crack_path.hpp"
 #include "nearest_seed.hpp"
 #include "polygon_geometry.hpp"
 
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <optional>
 #include <queue>
 #include <tuple>
 
@@ -34,16 +36,27 @@ Voigt outer(const Eigen::Vector3d& d) {
   return v;
 }
 
-// The largest normal stress over directions in the plane orthogonal to n: the top eigenvalue of
-// σ restricted to that plane.
-double tangent_max(const Voigt& s, const Eigen::Vector3d& n) {
+// σ restricted to the plane orthogonal to the unit vector n: its two eigenvalues (largest first)
+// and the unit direction, in that plane, of the largest.
+struct PlanePrincipal {
+  double top, second;
+  Eigen::Vector3d direction;
+};
+
+PlanePrincipal plane_principal(const Voigt& s, const Eigen::Vector3d& n) {
   const Eigen::Vector3d a = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d u = n.cross(a).normalized();
   const Eigen::Vector3d v = n.cross(u);
   const Eigen::Matrix3d t = voigt_to_tensor(s);
   const double uu = u.dot(t * u), vv = v.dot(t * v), uv = u.dot(t * v);
-  return 0.5 * (uu + vv) + std::sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv);
+  const double mid = 0.5 * (uu + vv), radius = std::sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv);
+  // The top eigenvector of [[uu, uv], [uv, vv]] at angle θ from u, tan 2θ = 2uv / (uu − vv).
+  const double theta = 0.5 * std::atan2(2.0 * uv, uu - vv);
+  return {mid + radius, mid - radius, std::cos(theta) * u + std::sin(theta) * v};
 }
+
+// The largest normal stress over directions in the plane orthogonal to n.
+double tangent_max(const Voigt& s, const Eigen::Vector3d& n) { return plane_principal(s, n).top; }
 
 // One heap entry of Algorithm 1's event queue: the earliest time the tet may cross its
 // resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
@@ -66,6 +79,20 @@ struct Event {
   }
 };
 
+// S_k, the crack's implicit function: the paper's noisy plane, or, for a turning crack, the same
+// noise on the distance to its traced path (crack_path.hpp).
+class CrackField {
+public:
+  explicit CrackField(CrackSurfaceFunction plane) : m_plane(std::move(plane)) {}
+  void follow(detail::CrackPath path) { m_path = std::move(path); }
+  double operator()(const Eigen::Vector3d& x) const { return m_path ? (*m_path)(x) + m_plane.noise(x) : m_plane(x); }
+  void subtract(double offset) { m_plane.subtract(offset); }
+
+private:
+  CrackSurfaceFunction m_plane;
+  std::optional<detail::CrackPath> m_path;
+};
+
 class Simulation {
 public:
   Simulation(const FractureBody& body, const FractureParams& params, const StressField& initial,
@@ -83,6 +110,25 @@ public:
     m_flood_stamp.assign(n, -1);
     m_snap = 1e-6 * body.mean_edge_length();
     m_near_crack.assign(n, kFar);
+    if (params.crack_turning > 0.0) {
+      // Paths as far as a crack can run (across the body), in steps of an element or of an eighth
+      // of r_relax if that is finer, bending no tighter than r_relax/2 (or 1.5 elements, where
+      // the mesh is coarser than that: crack_path.hpp), so the path does not depend on the mesh
+      // where the mesh resolves it.
+      const double h = body.mean_edge_length();
+      const auto box = m_mesh.bounding_box();
+      m_path.max_length = (box.row(1) - box.row(0)).norm();
+      m_path.step = std::min(h, params.relax_radius / 8.0);
+      m_path.min_radius = std::max(params.relax_radius / 2.0, 1.5 * h);
+      m_path.ends_at = [this](int tet) { return !m_cuts_of_tet[static_cast<std::size_t>(tet)].empty(); };
+      // Simplex noise's gradient is below ~3 per unit frequency (Gustavson's scaling); twice the
+      // bound leaves room for the P1 interpolant of a curved surface in a long tet.
+      double noise_slope = 0.0;
+      for (const NoiseOctave& o : params.noise) noise_slope += o.amplitude * o.frequency * 3.0;
+      m_max_slope = 2.0 * (1.0 + noise_slope);
+      m_free_distance.assign(n, kInf);
+      m_free_normal.assign(n, Eigen::Vector3d::Zero());
+    }
     m_gc = critical_energy_release_rate(params);
     m_flaw = flaw_size(params);
     m_directional = resolve_directional();
@@ -247,7 +293,7 @@ private:
     return hi;
   }
 
-  double node_value(int crack, const CrackSurfaceFunction& surface, int node) {
+  double node_value(int crack, const CrackField& surface, int node) {
     const auto v = static_cast<std::size_t>(node);
     if (m_node_stamp[v] != crack) {
       double s = surface(m_mesh.nodes().row(node).transpose());
@@ -259,7 +305,7 @@ private:
     return m_node_value[v];
   }
 
-  CrackCut make_cut(int crack, const CrackSurfaceFunction& surface, int tet) {
+  CrackCut make_cut(int crack, const CrackField& surface, int tet) {
     CrackCut cut;
     cut.tet = tet;
     for (int i = 0; i < 4; ++i) cut.node_values[static_cast<std::size_t>(i)] = node_value(crack, surface, m_mesh.tets()(tet, i));
@@ -289,7 +335,14 @@ private:
     crack.normal = opening_direction(stress_at(origin, t), principal, k);
     crack.opening_stress = principal.value;
     crack.noise_seed = Rng::derive(m_seed, "crack_noise", static_cast<std::uint64_t>(k)).next_u64();
-    CrackSurfaceFunction surface(crack.origin, crack.normal, m_params.noise, crack.noise_seed);
+    CrackField surface(CrackSurfaceFunction(crack.origin, crack.normal, m_params.noise, crack.noise_seed));
+    if (m_params.crack_turning > 0.0) {
+      surface.follow(detail::CrackPath(
+          m_mesh, m_body.surface_normals(), origin, crack.origin, crack.normal, m_path,
+          [&](int tet, const Eigen::Vector3d& normal, const Eigen::Vector3d& up, double step) {
+            return turn_heading(normal, tet, up, step, t);
+          }));
+    }
     // Make the P1 interpolant vanish at the origin's centroid (the mean of its node values), so
     // the opening element is always cut, however large the noise.
     double mean = 0.0;
@@ -333,6 +386,7 @@ private:
       m_flood_stamp[static_cast<std::size_t>(origin)] = k;
       frontier.push_back({origin, 0, 0, std::max(0.0, gain)});
     }
+    const bool turning = m_params.crack_turning > 0.0;
     std::vector<int> stopped_on;
     while (!frontier.empty()) {
       const Front front = frontier.front();
@@ -355,6 +409,7 @@ private:
         // junction open on the visible face (demo tile: 100 of 136 free ends).
         if (clip && !trace_reaches_side(tet, f, k, surface, *clip, clipped.clip_side)) continue;
         CrackCut cut = make_cut(k, surface, u);
+        if (turning && too_steep(u, cut)) continue;
         const auto nodes_u = tet_nodes(u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
         const CrackCut* u_clip = nullptr;
@@ -448,7 +503,7 @@ private:
   // Whether crack k's trace on local face f of `tet` has a point on side `side` (±1) of crack
   // `other`'s P1 interpolant in `tet` (≥ 0 kept, crack_polygon's rule): its end points on the
   // face's edges are enough, the interpolant being linear along the trace.
-  bool trace_reaches_side(int tet, int f, int k, const CrackSurfaceFunction& surface, const CrackCut& other, int side) {
+  bool trace_reaches_side(int tet, int f, int k, const CrackField& surface, const CrackCut& other, int side) {
     const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
     for (int a = 0; a < 3; ++a) {
       const int la = face[static_cast<std::size_t>(a)], lb = face[static_cast<std::size_t>((a + 1) % 3)];
@@ -476,22 +531,84 @@ private:
     return (std::cos(angle) * eigen.eigenvectors().col(2) + std::sin(angle) * eigen.eigenvectors().col(1)).normalized();
   }
 
-  // ±1: the sign of crack `other`'s P1 interpolant (in tet u) at the middle of crack k's trace on
-  // the face through which k arrives from `from` (its local face f).
-  int arrival_side(int from, int f, int u, int k, const CrackSurfaceFunction& surface, const CrackCut& other) {
+  // The middle of crack k's trace on local face f of `tet` (the mean of its points on the face's
+  // edges), or the tet's centroid when the face is not crossed.
+  Eigen::Vector3d trace_middle(int tet, int f, int k, const CrackField& surface) {
     const auto& face = TetMesh::kLocalFaces[static_cast<std::size_t>(f)];
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     int count = 0;
     for (int a = 0; a < 3; ++a) {
-      const int na = m_mesh.tets()(from, face[static_cast<std::size_t>(a)]);
-      const int nb = m_mesh.tets()(from, face[static_cast<std::size_t>((a + 1) % 3)]);
+      const int na = m_mesh.tets()(tet, face[static_cast<std::size_t>(a)]);
+      const int nb = m_mesh.tets()(tet, face[static_cast<std::size_t>((a + 1) % 3)]);
       const double va = node_value(k, surface, na), vb = node_value(k, surface, nb);
       if ((va > 0.0) == (vb > 0.0)) continue;
       const double s = va / (va - vb);
       sum += m_mesh.nodes().row(na).transpose() + s * (m_mesh.nodes().row(nb) - m_mesh.nodes().row(na)).transpose();
       ++count;
     }
-    const Eigen::Vector3d mid = count ? Eigen::Vector3d(sum / count) : m_mesh.centroid(from);
+    return count ? Eigen::Vector3d(sum / count) : m_mesh.centroid(tet);
+  }
+
+  // Crack paths (docs/fracture.md): the heading of a crack entering `to` from `from`. Its part
+  // along the surface (orthogonal to the nearest surface normal n_s) turns toward p, the top
+  // principal direction of the stress in the tangent plane, by the fraction w = 1 − exp(−a·ℓ/ℓ_t)
+  // of the way: ℓ the step (centroid to centroid), ℓ_t = r_relax·(1 − β)/β the turning length
+  // (β = crack_turning; β = 1 turns at once), and a = (λ₁ − max(λ₂, 0))/R_e ∈ [0, 1] how much
+  // more one direction pulls than the other, against the element's resistance: in equi-biaxial
+  // tension p means nothing and the crack runs straight, and in a relaxed region a weak stress
+  // cannot swing it around. Per length, not per element, so a finer mesh turns a crack as much.
+  // Turning only along the surface keeps a crack across the surface: surface tension opens
+  // cracks there, and a crack turned parallel to it would delaminate the body.
+  Eigen::Vector3d turn_heading(const Eigen::Vector3d& heading, int to, const Eigen::Vector3d& n_s, double step,
+                               double t) const {
+    const PlanePrincipal top = plane_principal(turning_stress(to, t), n_s);
+    const double a = std::clamp((top.top - std::max(top.second, 0.0)) / m_resistance(to), 0.0, 1.0);
+    const Eigen::Vector3d along = heading - heading.dot(n_s) * n_s;
+    if (!(a > 0.0) || along.norm() < 1e-6) return heading;
+    const double beta = m_params.crack_turning;
+    double w = 1.0;
+    if (beta < 1.0) {
+      w = 1.0 - std::exp(-a * step * beta / (m_params.relax_radius * (1.0 - beta)));
+    }
+    const Eigen::Vector3d p = top.direction.dot(along) < 0.0 ? Eigen::Vector3d(-top.direction) : top.direction;
+    const Eigen::Vector3d target = p * along.norm() + heading.dot(n_s) * n_s;
+    const Eigen::Vector3d turned = heading + w * (target - heading);
+    const double norm = turned.norm();
+    return norm > 1e-12 ? Eigen::Vector3d(turned / norm) : heading;
+  }
+
+  // Whether the P1 interpolant of `cut` in `tet` is steeper than a turning crack's field can be:
+  // the path distance has slope 1 and the noise octaves add at most Σ A_i·f_i·|∇simplex|, so a
+  // slope several times that is the jump of D across a bend's medial axis (crack_path.hpp), not
+  // a crack; the flood does not enter there.
+  bool too_steep(int tet, const CrackCut& cut) const {
+    const auto p = tet_nodes(tet);
+    Eigen::Matrix3d a;
+    for (int i = 0; i < 3; ++i) a.row(i) = p.row(i + 1) - p.row(0);
+    const auto& v = cut.node_values;
+    const Eigen::Vector3d g = a.partialPivLu().solve(Eigen::Vector3d(v[1] - v[0], v[2] - v[0], v[3] - v[0]));
+    return !(g.norm() <= m_max_slope);
+  }
+
+  // The stress a turning tip in `tet` answers to: the stress map, except that in directional mode
+  // the normal stress across the nearest earlier crack within r_relax is released in full, by the
+  // kernel φ (Eq. 2), instead of by at most v_relax: that crack's faces carry no traction, so a tip
+  // closing in on it turns to meet it square, as cracks in tiles, glazes and mud do (a T near
+  // 90°). The map itself keeps Eq. 3's partial release, which sets when elements crack.
+  Voigt turning_stress(int tet, double t) const {
+    Voigt s = stress_at(tet, t);
+    const auto e = static_cast<std::size_t>(tet);
+    if (!m_directional || !(m_free_distance[e] < kInf)) return s;
+    const double phi = relaxation_kernel(m_free_distance[e], m_params.relax_radius);
+    const Eigen::Vector3d& d = m_free_normal[e];
+    s -= phi * std::max(0.0, normal_component(s, d)) * outer(d);
+    return s;
+  }
+
+  // ±1: the sign of crack `other`'s P1 interpolant (in tet u) at the middle of crack k's trace on
+  // the face through which k arrives from `from` (its local face f).
+  int arrival_side(int from, int f, int u, int k, const CrackField& surface, const CrackCut& other) {
+    const Eigen::Vector3d mid = trace_middle(from, f, k, surface);
     // Barycentric coordinates of `mid` in u give the P1 value of `other` there.
     const auto p = tet_nodes(u);
     Eigen::Matrix3d a;
@@ -510,7 +627,8 @@ private:
   void relax(const std::vector<std::vector<Eigen::Vector3d>>& polygons, const std::vector<Eigen::Vector3d>& normals,
              double t) {
     const double radius = m_params.relax_radius, rate = m_params.relax_rate;
-    if (rate <= 0.0 || radius <= 0.0) return;
+    const bool turning = m_params.crack_turning > 0.0;
+    if ((rate <= 0.0 && !turning) || radius <= 0.0) return;
     const auto& cuts = m_cracks.back().cuts;
     std::vector<std::pair<int, int>> seeds;
     seeds.reserve(cuts.size());
@@ -523,10 +641,11 @@ private:
         },
         radius);
     for (int tet : m_propagation.reached()) {
-      const double phi = relaxation_kernel(m_propagation.distance_of(tet), radius);
+      const double distance = m_propagation.distance_of(tet);
+      const double phi = relaxation_kernel(distance, radius);
       if (phi <= 0.0) continue;
       Eigen::Vector3d d = Eigen::Vector3d::Zero();
-      if (m_directional) {
+      if (m_directional || turning) {
         // d: orthogonal to the nearest surface normal and to the crack's path along the
         // surface, i.e. the crack normal projected on the tangent plane (paper §5.2).
         const Eigen::Vector3d n_s = m_body.surface_normals().row(tet).transpose();
@@ -534,8 +653,14 @@ private:
         d = c - c.dot(n_s) * n_s;
         d = d.norm() > 0.1 ? Eigen::Vector3d(d.normalized()) : c;  // a crack parallel to the surface
       }
-      m_stress[static_cast<std::size_t>(tet)] = relax_element_stress(stress_at(tet, t), rate * phi, m_directional, d);
-      m_base_time[static_cast<std::size_t>(tet)] = t;
+      const auto e = static_cast<std::size_t>(tet);
+      if (turning && distance < m_free_distance[e]) {
+        m_free_distance[e] = distance;
+        m_free_normal[e] = d;
+      }
+      if (rate <= 0.0) continue;
+      m_stress[e] = relax_element_stress(stress_at(tet, t), rate * phi, m_directional, d);
+      m_base_time[e] = t;
     }
   }
 
@@ -581,12 +706,18 @@ private:
   std::vector<int> m_flood_stamp;
   // Tet hops to the nearest earlier crack, up to kJoinHops (kFar beyond).
   std::vector<std::uint8_t> m_near_crack;
+  // With crack turning: the distance to the nearest earlier crack within r_relax (∞ beyond) and
+  // the relaxation direction d of its nearest polygon (turning_stress).
+  std::vector<double> m_free_distance;
+  std::vector<Eigen::Vector3d> m_free_normal;
   std::vector<int> m_hop_frontier, m_hop_next;
   // A tip this many tets from an earlier crack, and closing in, runs on to it whatever its budget.
   static constexpr int kJoinHops = 3;
   static constexpr std::uint8_t kFar = 255;
   std::vector<CrackSurface> m_cracks;
   double m_snap = 0.0, m_gc = 0.0, m_flaw = 0.0;
+  detail::CrackPath::Options m_path;
+  double m_max_slope = kInf;
   bool m_directional = true;
 
 };

@@ -1,10 +1,12 @@
 // Mesh independence (issue 10): a material fitted on one body is applied to bodies of other
 // resolutions, so the same parameters must give the same kind of pattern on a coarse and a fine
 // mesh of one body. The bundled tile material on the 1 × 1 × 0.05 m tile meshed by CGAL at about
-// 7K, 24K and 54K tets, default scenario, seeds 1–6: the Eq. 5 distance between the 7K and the
+// 7K, 24K and 54K tets, default scenario, seeds 1–10: the Eq. 5 distance between the 7K and the
 // 54K pattern of the same seed (the resistance field is a function of position: one seed is one
-// body) must stay within 1.5× the seed-to-seed spread at 54K (the mean distance over the 15
-// pairs of seeds), the issue's bound. Labelled slow: three CGAL meshes and 18 runs, ~40 s.
+// body) must stay within 1.5× the seed-to-seed spread at 54K (the mean distance over the 45
+// pairs of seeds), the issue's bound. Ten seeds, not six: with six the ratio moved by ±0.2 from
+// one crack_turning to the next (1.31–1.72), more than the margin it is tested against.
+// Labelled slow: three CGAL meshes and 30 runs, ~15 s.
 //
 // With one independent resistance draw per element (resistance_correlation = 0, the paper's) the
 // ratio is 7.4: a finer mesh has more weak elements and breaks into more fragments (202, 253,
@@ -24,7 +26,7 @@
 namespace fissure {
 namespace {
 
-constexpr int kSeeds = 6;
+constexpr int kSeeds = 10;
 
 std::vector<PatternStats> patterns(int target_tets, const FractureParams& params) {
   TetrahedralizeOptions options;

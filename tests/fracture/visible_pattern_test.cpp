@@ -433,7 +433,10 @@ TEST(VisiblePattern, BadInputIsRefusedNamingTheCulprit) {
 // - free ends: the drawing closes gaps, so it has fewer, except where a branch shorter than a
 //   line width leaves a junction and reads as an end: at most 2 more (measured: up to 1);
 // - Eq. 5 below 0.053, the distance between the two closest different shared exemplars
-//   (docs/exemplar.md): the drawing is never taken for another pattern (measured 0.01–0.04).
+//   (docs/exemplar.md): the drawing is never taken for another pattern (measured 0.016–0.030,
+//   with the geometry read at the drawing's resolution: junctions closer than a line width are
+//   one, fragments under 32 px are none, the exemplar module's own rules; without them turning
+//   cracks' millimetre slivers and double T's gave 0.068).
 //   Patterns of ~50 fragments (a 0.6 m tile) reach 0.14: each fragment is 2 % of the area
 //   histogram there, and this bound is for the fit's body, not for any pattern.
 TEST(VisiblePattern, SimulatedPatternsDrawnAndAnalysedAgree) {

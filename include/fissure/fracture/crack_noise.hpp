@@ -26,6 +26,9 @@ public:
                        const std::array<NoiseOctave, 4>& octaves, std::uint64_t noise_seed);
   /// S(x), m: signed distance to the plane plus the noise.
   double operator()(const Eigen::Vector3d& x) const;
+  /// The bumps alone: S(x) minus its plane part (up to the constant of subtract), so a crack whose
+  /// normal turns as it runs keeps the same noise (simulation.cpp, crack paths).
+  double noise(const Eigen::Vector3d& x) const { return (*this)(x) - m_normal.dot(x - m_origin); }
   /// Shifts S by a constant (S ← S − offset), to make its P1 interpolant vanish where wanted.
   void subtract(double offset) { m_offset += offset; }
   const Eigen::Vector3d& normal() const { return m_normal; }

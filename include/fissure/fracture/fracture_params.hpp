@@ -43,6 +43,11 @@ struct FractureParams {
   /// resistance belongs to the body, not to its mesh; 0: one independent draw per element (the
   /// paper's, mesh-dependent). Not in the paper.
   double resistance_correlation = 0.1;
+  /// β in [0, 1]: how readily a running crack turns toward the max principal direction of the
+  /// stress along the surface where it goes: over the length r_relax·(1 − β)/β, faster where one
+  /// direction pulls harder (docs/fracture.md, "Crack paths"). 0: the paper's noisy plane, one
+  /// normal for the whole crack; 1: at once (maximum tangential stress criterion). Not in the paper.
+  double crack_turning = 0.9;
 
   // Simulation (IN).
   double age = 10.0;                  ///< duration of Algorithm 1, age units
