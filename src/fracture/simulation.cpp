@@ -36,27 +36,42 @@ Voigt outer(const Eigen::Vector3d& d) {
   return v;
 }
 
-// σ restricted to the plane orthogonal to the unit vector n: its two eigenvalues (largest first)
-// and the unit direction, in that plane, of the largest.
+// σ restricted to the plane orthogonal to the unit vector n, in an orthonormal basis (u, v) of
+// that plane: [[uu, uv], [uv, vv]].
+struct PlaneStress {
+  Eigen::Vector3d u, v;
+  double uu, vv, uv;
+  double mid() const { return 0.5 * (uu + vv); }
+  double radius() const { return std::sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv); }
+};
+
+PlaneStress plane_stress(const Voigt& s, const Eigen::Vector3d& n) {
+  const Eigen::Vector3d a = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d u = n.cross(a).normalized();
+  const Eigen::Vector3d v = n.cross(u);
+  const Eigen::Matrix3d t = voigt_to_tensor(s);
+  return {u, v, u.dot(t * u), v.dot(t * v), u.dot(t * v)};
+}
+
+// The largest normal stress over directions in the plane orthogonal to n (Algorithm 1's crossing
+// time bracket: no direction computed).
+double tangent_max(const Voigt& s, const Eigen::Vector3d& n) {
+  const PlaneStress p = plane_stress(s, n);
+  return p.mid() + p.radius();
+}
+
+// That plane's two principal stresses (largest first) and the unit direction of the largest.
 struct PlanePrincipal {
   double top, second;
   Eigen::Vector3d direction;
 };
 
 PlanePrincipal plane_principal(const Voigt& s, const Eigen::Vector3d& n) {
-  const Eigen::Vector3d a = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d u = n.cross(a).normalized();
-  const Eigen::Vector3d v = n.cross(u);
-  const Eigen::Matrix3d t = voigt_to_tensor(s);
-  const double uu = u.dot(t * u), vv = v.dot(t * v), uv = u.dot(t * v);
-  const double mid = 0.5 * (uu + vv), radius = std::sqrt(0.25 * (uu - vv) * (uu - vv) + uv * uv);
+  const PlaneStress p = plane_stress(s, n);
   // The top eigenvector of [[uu, uv], [uv, vv]] at angle θ from u, tan 2θ = 2uv / (uu − vv).
-  const double theta = 0.5 * std::atan2(2.0 * uv, uu - vv);
-  return {mid + radius, mid - radius, std::cos(theta) * u + std::sin(theta) * v};
+  const double theta = 0.5 * std::atan2(2.0 * p.uv, p.uu - p.vv);
+  return {p.mid() + p.radius(), p.mid() - p.radius(), std::cos(theta) * p.u + std::sin(theta) * p.v};
 }
-
-// The largest normal stress over directions in the plane orthogonal to n.
-double tangent_max(const Voigt& s, const Eigen::Vector3d& n) { return plane_principal(s, n).top; }
 
 // One heap entry of Algorithm 1's event queue: the earliest time the tet may cross its
 // resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
