@@ -19,23 +19,6 @@ Eigen::Vector4d barycentric(const TetMesh& mesh, int t, const Eigen::Vector3d& x
   return {1.0 - b.sum(), b(0), b(1), b(2)};
 }
 
-// The tet holding x, walking from `start` across the face of the most negative barycentric
-// coordinate (face f is opposite local node f); -1 when the walk leaves the body. Steps are an
-// element or less, so the walk takes one or two moves; the cap only guards against cycling on
-// degenerate input.
-int locate(const TetMesh& mesh, int start, const Eigen::Vector3d& x) {
-  int t = start;
-  for (int moves = 0; moves < 64; ++moves) {
-    const Eigen::Vector4d l = barycentric(mesh, t, x);
-    if (!l.allFinite()) return -1;
-    Eigen::Index f = 0;
-    if (l.minCoeff(&f) >= -1e-12) return t;
-    t = mesh.neighbours()(t, static_cast<int>(f));
-    if (t < 0) return -1;
-  }
-  return -1;
-}
-
 // The direction along the surface (normal `up`) orthogonal to the crack normal n, oriented like
 // `previous`; zero when the crack lies parallel to the surface there.
 Eigen::Vector3d along(const Eigen::Vector3d& n, const Eigen::Vector3d& up, const Eigen::Vector3d& previous) {
@@ -62,27 +45,42 @@ Eigen::Vector3d limit_turn(const Eigen::Vector3d& from, const Eigen::Vector3d& t
 
 }  // namespace
 
+// The tet holding x, walking from `start` across the face of the most negative barycentric
+// coordinate (face f is opposite local node f); -1 when the walk leaves the body. Steps are an
+// element or less, so the walk takes one or two moves; the cap only guards against cycling on
+// degenerate input.
+int locate_tet(const TetMesh& mesh, int start, const Eigen::Vector3d& x) {
+  int t = start;
+  for (int moves = 0; moves < 64; ++moves) {
+    const Eigen::Vector4d l = barycentric(mesh, t, x);
+    if (!l.allFinite()) return -1;
+    Eigen::Index f = 0;
+    if (l.minCoeff(&f) >= -1e-12) return t;
+    t = mesh.neighbours()(t, static_cast<int>(f));
+    if (t < 0) return -1;
+  }
+  return -1;
+}
+
 CrackPath::CrackPath(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normals, int origin_tet,
-                     const Eigen::Vector3d& origin, const Eigen::Vector3d& normal, const Options& options,
-                     const Turn& turn) {
+                     const Eigen::Vector3d& origin, const Eigen::Vector3d& normal_minus,
+                     const Eigen::Vector3d& normal_plus, const Options& options, const Turn& turn) {
   const Eigen::Vector3d up = surface_normals.row(origin_tet).transpose();
-  std::vector<Eigen::Vector3d> points_minus, normals_minus, up_minus;
-  std::vector<Eigen::Vector3d> points_plus, normals_plus, up_plus;
-  points_minus.push_back(origin);
-  normals_minus.push_back(normal);
-  up_minus.push_back(up);
-  points_plus = points_minus;
-  normals_plus = normals_minus;
-  up_plus = up_minus;
+  std::vector<Eigen::Vector3d> points_minus{origin}, normals_minus{normal_minus}, up_minus{up};
+  std::vector<Eigen::Vector3d> points_plus{origin}, normals_plus{normal_plus}, up_plus{up};
   trace_arm(mesh, surface_normals, origin_tet, -1.0, options, turn, points_minus, normals_minus, up_minus);
   trace_arm(mesh, surface_normals, origin_tet, 1.0, options, turn, points_plus, normals_plus, up_plus);
-  // One polyline: the minus arm reversed, then the plus arm (the origin once).
+  // One polyline: the minus arm reversed, then the plus arm. The origin appears once, or, at a
+  // kink, twice (once with each arm's normal): the zero-length segment between the two keeps each
+  // arm's normal up to the kink instead of blending the two across its first segment.
   m_points.assign(points_minus.rbegin(), points_minus.rend());
   m_normals.assign(normals_minus.rbegin(), normals_minus.rend());
   m_up.assign(up_minus.rbegin(), up_minus.rend());
-  m_points.insert(m_points.end(), points_plus.begin() + 1, points_plus.end());
-  m_normals.insert(m_normals.end(), normals_plus.begin() + 1, normals_plus.end());
-  m_up.insert(m_up.end(), up_plus.begin() + 1, up_plus.end());
+  const bool kink = normal_minus != normal_plus;
+  const auto from = static_cast<std::ptrdiff_t>(kink ? 0 : 1);
+  m_points.insert(m_points.end(), points_plus.begin() + from, points_plus.end());
+  m_normals.insert(m_normals.end(), normals_plus.begin() + from, normals_plus.end());
+  m_up.insert(m_up.end(), up_plus.begin() + from, up_plus.end());
 }
 
 void CrackPath::trace_arm(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normals, int origin_tet, double sign,
@@ -101,7 +99,8 @@ void CrackPath::trace_arm(const TetMesh& mesh, const Eigen::MatrixX3d& surface_n
   int after_end = -1;  // steps since the path first entered a tet where it may end
   for (int i = 0; i < steps && after_end < kStepsPastEnd; ++i) {
     const Eigen::Vector3d next = points.back() + step * direction;
-    tet = locate(mesh, tet, next);
+    const int from = tet;
+    tet = locate_tet(mesh, tet, next);
     if (tet < 0) return;  // left the body: the end segment's ray carries the crack out
     if (after_end >= 0) {
       ++after_end;
@@ -115,7 +114,7 @@ void CrackPath::trace_arm(const TetMesh& mesh, const Eigen::MatrixX3d& surface_n
     const Eigen::Vector3d& previous = up.back();
     if (u.dot(previous) < 0.0) u = -u;  // a tile's bottom is the same plane as its top
     if (u.dot(previous) < kSmoothTurn) u = previous;
-    n = limit_turn(n, turn(tet, n, u, step), max_turn);
+    n = limit_turn(n, turn(from, tet, n, u, step), max_turn);
     const Eigen::Vector3d d = along(n, u, direction);
     points.push_back(next);
     normals.push_back(n);

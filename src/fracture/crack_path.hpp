@@ -26,12 +26,16 @@
 
 namespace fissure::detail {
 
+/// The tet holding x, walking from `start` across faces toward it; -1 when the walk leaves the
+/// body. For points an element or two from `start`.
+int locate_tet(const TetMesh& mesh, int start, const Eigen::Vector3d& x);
+
 class CrackPath {
 public:
-  /// The new crack normal after a step of `length` ending in `tet` with normal `normal`, turning
-  /// about the surface normal `up`.
-  using Turn = std::function<Eigen::Vector3d(int tet, const Eigen::Vector3d& normal, const Eigen::Vector3d& up,
-                                             double length)>;
+  /// The new crack normal after a step of `length` from tet `from` into `tet` with normal
+  /// `normal`, turning about the surface normal `up`.
+  using Turn = std::function<Eigen::Vector3d(int from, int tet, const Eigen::Vector3d& normal,
+                                             const Eigen::Vector3d& up, double length)>;
 
   struct Options {
     double step = 0.0;        ///< m between path points
@@ -52,7 +56,16 @@ public:
   /// until it leaves the body or reaches options.max_length. `surface_normals` holds each tet's
   /// nearest surface normal (FractureBody); the arms run across them.
   CrackPath(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normals, int origin_tet, const Eigen::Vector3d& origin,
-            const Eigen::Vector3d& normal, const Options& options, const Turn& turn);
+            const Eigen::Vector3d& normal, const Options& options, const Turn& turn)
+      : CrackPath(mesh, surface_normals, origin_tet, origin, normal, normal, options, turn) {}
+
+  /// A path with a kink at `origin`: the minus arm leaves with crack normal `normal_minus`, the
+  /// plus arm with `normal_plus` (each arm runs along the surface across its normal; both normals
+  /// on the same side of the path, i.e. up × (direction of travel from the minus end to the plus
+  /// end)). Two arms of a three-armed star crack (docs/fracture.md, "Star cracks").
+  CrackPath(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normals, int origin_tet, const Eigen::Vector3d& origin,
+            const Eigen::Vector3d& normal_minus, const Eigen::Vector3d& normal_plus, const Options& options,
+            const Turn& turn);
 
   /// D(x) above. Beyond either end of the path the end segment goes on as a straight ray.
   double operator()(const Eigen::Vector3d& x) const;

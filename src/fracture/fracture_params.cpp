@@ -51,6 +51,10 @@ std::vector<ParameterInfo> build_table() {
        "How readily a running crack turns toward the local max principal stress direction: over a length "
        "r_relax*(1-b)/b (0: never, the paper's plane; 1: at once)",
        "not in the paper (crack paths, docs/fracture.md); Erdogan-Sih's maximum tangential stress"},
+      {"star_biaxiality", "--star-biaxiality", "", 0.0, 1.0, false, false, d.star_biaxiality,
+       "A crack opens as a three-armed star (arms 120 degrees apart, a Y junction) where the in-plane stress "
+       "at its origin is at least this biaxial, lambda2/lambda1 (1: never, the paper's single crack)",
+       "not in the paper (star cracks, docs/fracture.md); star cracks under equi-biaxial tension"},
       {"age", "--age", "age units", 0.0, 1e4, false, false, d.age,
        "Duration of the stress-map evolution (Algorithm 1); the stress rate is per age unit",
        "Table 2 (IN)"},
@@ -103,6 +107,7 @@ enum Row : std::size_t {
   kFractureToughness,
   kResistanceCorrelation,
   kCrackTurning,
+  kStarBiaxiality,
   kAge,
   kStressRate,
   kRelaxRadius,
@@ -139,6 +144,7 @@ double& parameter_value(FractureParams& p, std::size_t row) {
     case kFractureToughness: return p.fracture_toughness;
     case kResistanceCorrelation: return p.resistance_correlation;
     case kCrackTurning: return p.crack_turning;
+    case kStarBiaxiality: return p.star_biaxiality;
     case kAge: return p.age;
     case kStressRate: return p.stress_rate;
     case kRelaxRadius: return p.relax_radius;

@@ -125,7 +125,7 @@ public:
     m_flood_stamp.assign(n, -1);
     m_snap = 1e-6 * body.mean_edge_length();
     m_near_crack.assign(n, kFar);
-    if (params.crack_turning > 0.0) {
+    if (params.crack_turning > 0.0 || params.star_biaxiality < 1.0) {
       // Paths as far as a crack can run (across the body), in steps of an element or of an eighth
       // of r_relax if that is finer, bending no tighter than r_relax/2 (or 1.5 elements, where
       // the mesh is coarser than that: crack_path.hpp), so the path does not depend on the mesh
@@ -135,7 +135,11 @@ public:
       m_path.max_length = (box.row(1) - box.row(0)).norm();
       m_path.step = std::min(h, params.relax_radius / 8.0);
       m_path.min_radius = std::max(params.relax_radius / 2.0, 1.5 * h);
-      m_path.ends_at = [this](int tet) { return !m_cuts_of_tet[static_cast<std::size_t>(tet)].empty(); };
+      m_path.ends_at = [this](int tet) {
+        for (const auto& [crack, cut] : m_cuts_of_tet[static_cast<std::size_t>(tet)])
+          if (crack != m_path_leaves) return true;
+        return false;
+      };
       // Simplex noise's gradient is below ~3 per unit frequency (Gustavson's scaling); twice the
       // bound leaves room for the P1 interpolant of a curved surface in a long tet.
       double noise_slope = 0.0;
@@ -339,30 +343,140 @@ private:
     return pos && neg;
   }
 
+  // Each cut's polygon (clipped at junctions) and unit normal, for the relaxation.
+  struct CrackPolygons {
+    std::vector<std::vector<Eigen::Vector3d>> polygons;
+    std::vector<Eigen::Vector3d> normals;
+  };
+
+  // Algorithm 1's crack at `origin`: one crack, or, where the stress there is biaxial enough, a
+  // three-armed star (star_arms). A star is one event: its two cracks flood the stress of the
+  // moment they open, and relax it together after.
   void open_crack(int origin, double t) {
     const int k = static_cast<int>(m_cracks.size());
-    const MaxPrincipal principal = max_principal_with_direction(stress_at(origin, t));
+    const Voigt stress = stress_at(origin, t);
+    const MaxPrincipal principal = max_principal_with_direction(stress);
     CrackSurface crack;
     crack.id = k;
     crack.time = t;
     crack.origin_tet = origin;
     crack.origin = m_mesh.centroid(origin);
-    crack.normal = opening_direction(stress_at(origin, t), principal, k);
+    crack.normal = opening_direction(stress, principal, k);
     crack.opening_stress = principal.value;
-    crack.noise_seed = Rng::derive(m_seed, "crack_noise", static_cast<std::uint64_t>(k)).next_u64();
+    crack.noise_seed = noise_seed(k);
+    const std::optional<StarArms> star = star_arms(origin, stress, crack.normal, k);
     CrackField surface(CrackSurfaceFunction(crack.origin, crack.normal, m_params.noise, crack.noise_seed));
-    if (m_params.crack_turning > 0.0) {
-      surface.follow(detail::CrackPath(
-          m_mesh, m_body.surface_normals(), origin, crack.origin, crack.normal, m_path,
-          [&](int tet, const Eigen::Vector3d& normal, const Eigen::Vector3d& up, double step) {
-            return turn_heading(normal, tet, up, step, t);
-          }));
+    if (m_params.crack_turning > 0.0 || star) {
+      const Eigen::Vector3d minus = star ? star->minus_normal : crack.normal;
+      const Eigen::Vector3d plus = star ? star->plus_normal : crack.normal;
+      surface.follow(detail::CrackPath(m_mesh, m_body.surface_normals(), origin, crack.origin, minus, plus, m_path,
+                                       turn_for(t, star.has_value())));
     }
     // Make the P1 interpolant vanish at the origin's centroid (the mean of its node values), so
     // the opening element is always cut, however large the noise.
     double mean = 0.0;
     for (int i = 0; i < 4; ++i) mean += surface(m_mesh.nodes().row(m_mesh.tets()(origin, i)).transpose());
     surface.subtract(0.25 * mean);
+    const CrackPolygons first = flood(std::move(crack), surface, t);
+    record_crack_hops(k);
+    std::optional<CrackPolygons> third;
+    if (star && k + 1 < m_options.max_cracks) third = open_third_arm(k, *star, t);
+    relax(k, first, t);
+    if (third) relax(k + 1, *third, t);
+  }
+
+  std::uint64_t noise_seed(int k) const {
+    return Rng::derive(m_seed, "crack_noise", static_cast<std::uint64_t>(k)).next_u64();
+  }
+
+  // A star's arms turn only while closing in on an earlier crack within r_relax (to meet it
+  // square). In the open, arms 120° apart turn toward the same principal direction, and so do
+  // two arms leaving an earlier crack: they converged into teardrop loops, because the
+  // relaxation that keeps real arms apart comes only after the path is traced.
+  detail::CrackPath::Turn turn_for(double t, bool star_arm) const {
+    return [this, t, star_arm](int from, int tet, const Eigen::Vector3d& normal, const Eigen::Vector3d& up,
+                               double step) {
+      if (star_arm && !(m_free_distance[static_cast<std::size_t>(tet)] < m_free_distance[static_cast<std::size_t>(from)]))
+        return normal;
+      return turn_heading(normal, tet, up, step, t);
+    };
+  }
+
+  // Star cracks (docs/fracture.md): under in-plane tension nearly equal in every direction no
+  // direction is preferred, and a crack opens as three arms 120° apart (a Y) where one crack
+  // would leave a straight line. The arms: a kinked crack whose two arms leave the origin 120°
+  // apart, both 120° from the third, a crack of its own that runs from the kink. The third arm
+  // runs along the single crack's course, across the max principal direction, to one side or the
+  // other by (seed, crack).
+  struct StarArms {
+    Eigen::Vector3d minus_normal, plus_normal;  // the kinked crack's arms (CrackPath's kink)
+    Eigen::Vector3d third;                      // the third arm's direction along the surface
+    Eigen::Vector3d up;
+  };
+
+  std::optional<StarArms> star_arms(int origin, const Voigt& stress, const Eigen::Vector3d& normal, int k) const {
+    if (!(m_params.star_biaxiality < 1.0)) return std::nullopt;
+    const Eigen::Vector3d up = m_body.surface_normals().row(origin).transpose();
+    const PlanePrincipal p = plane_principal(stress, up);
+    if (!(p.top > 0.0) || !(p.second >= m_params.star_biaxiality * p.top)) return std::nullopt;
+    Eigen::Vector3d along = normal.cross(up);
+    // A crack opening near parallel to the surface (at a side wall) delaminates: no surface star.
+    if (along.norm() < 0.5) return std::nullopt;
+    along.normalize();
+    if (Rng::derive(m_seed, "star_side", static_cast<std::uint64_t>(k)).uniform(0.0, 1.0) < 0.5) along = -along;
+    // v turned by θ about up (v ⊥ up).
+    const auto turned = [&](const Eigen::Vector3d& v, double theta) {
+      return Eigen::Vector3d(std::cos(theta) * v + std::sin(theta) * up.cross(v));
+    };
+    const Eigen::Vector3d minus_arm = turned(along, 2.0 * kPi / 3.0), plus_arm = turned(along, -2.0 * kPi / 3.0);
+    // Normals on one side of the path, up × the direction of travel (in along the minus arm,
+    // out along the plus arm): CrackPath's convention.
+    return StarArms{minus_arm.cross(up), up.cross(plus_arm), along, up};
+  }
+
+  // The star's third arm, crack k + 1: through the kinked crack's origin o along `star.third`
+  // (its noise made to vanish at o, so it meets the kink there), opened in the first tet along
+  // the arm, within a few elements of o, that no crack cuts and its own surface does; it floods
+  // from there both ways, back to the kink, where it ends on the kinked crack (a T by the flood's
+  // rules, a Y by its angles), and out. std::nullopt when no tet qualifies (a mesh too coarse for
+  // the arm to leave the kink): the star stays a kinked crack.
+  std::optional<CrackPolygons> open_third_arm(int k, const StarArms& star, double t) {
+    const CrackSurface& kinked = m_cracks[static_cast<std::size_t>(k)];
+    const Eigen::Vector3d o = kinked.origin;
+    CrackSurface crack;
+    crack.id = k + 1;
+    crack.time = t;
+    crack.normal = star.up.cross(star.third);
+    crack.noise_seed = noise_seed(k + 1);
+    CrackField surface(CrackSurfaceFunction(o, crack.normal, m_params.noise, crack.noise_seed));
+    // Its path does not end in the kinked crack's tets it starts among.
+    m_path_leaves = k;
+    surface.follow(detail::CrackPath(m_mesh, m_body.surface_normals(), kinked.origin_tet, o, crack.normal, crack.normal,
+                                     m_path, turn_for(t, true)));
+    m_path_leaves = -1;
+    surface.subtract(surface(o));
+    const double h = m_body.mean_edge_length();
+    int tet = kinked.origin_tet;
+    for (int i = 1; i <= 8; ++i) {
+      tet = detail::locate_tet(m_mesh, tet, o + (0.5 * h * i) * star.third);
+      if (tet < 0) return std::nullopt;
+      if (!m_cuts_of_tet[static_cast<std::size_t>(tet)].empty()) continue;
+      CrackCut cut = make_cut(k + 1, surface, tet);
+      if (!changes_sign(cut)) continue;
+      crack.origin_tet = tet;
+      crack.origin = m_mesh.centroid(tet);
+      crack.opening_stress = max_principal_stress(stress_at(tet, t));
+      crack.branch_of = k;
+      return flood(std::move(crack), surface, t);
+    }
+    return std::nullopt;
+  }
+
+  // Floods `crack` (id, time, origin tet and normal set) from its origin tet through the tets
+  // `surface` crosses, and adds it to the cracks.
+  CrackPolygons flood(CrackSurface crack, const CrackField& surface, double t) {
+    const int k = crack.id;
+    const int origin = crack.origin_tet;
 
     // Flood (paper-gaps §3): breadth first through the faces the surface crosses, with an
     // energy budget carried along each path (docs/fracture.md): each tet adds A_e (G_e − G_c),
@@ -401,7 +515,7 @@ private:
       m_flood_stamp[static_cast<std::size_t>(origin)] = k;
       frontier.push_back({origin, 0, 0, std::max(0.0, gain)});
     }
-    const bool turning = m_params.crack_turning > 0.0;
+    const bool on_path = m_max_slope < kInf;  // a turning crack or a star's arm may follow a path
     std::vector<int> stopped_on;
     while (!frontier.empty()) {
       const Front front = frontier.front();
@@ -424,7 +538,7 @@ private:
         // junction open on the visible face (demo tile: 100 of 136 free ends).
         if (clip && !trace_reaches_side(tet, f, k, surface, *clip, clipped.clip_side)) continue;
         CrackCut cut = make_cut(k, surface, u);
-        if (turning && too_steep(u, cut)) continue;
+        if (on_path && too_steep(u, cut)) continue;
         const auto nodes_u = tet_nodes(u);
         const auto& earlier = m_cuts_of_tet[static_cast<std::size_t>(u)];
         const CrackCut* u_clip = nullptr;
@@ -485,16 +599,17 @@ private:
     crack.stopped_on = std::move(stopped_on);
 
     // Polygons of every cut (clipped at junctions), for the crack's area and the relaxation.
-    std::vector<std::vector<Eigen::Vector3d>> polygons(cuts.size());
-    std::vector<Eigen::Vector3d> normals(cuts.size());
+    CrackPolygons out;
+    out.polygons.resize(cuts.size());
+    out.normals.resize(cuts.size());
     double total_area = 0.0;
     for (std::size_t i = 0; i < cuts.size(); ++i) {
       const CrackCut& c = cuts[i];
       const CrackCut* clip = nullptr;
       if (c.clipped_by >= 0) clip = &cut_of(c.clipped_by, c.tet);
-      polygons[i] = crack_polygon(tet_nodes(c.tet), c, clip);
-      const Eigen::Vector3d av = detail::polygon_area_vector(polygons[i]);
-      normals[i] = av.norm() > 0.0 ? Eigen::Vector3d(av.normalized()) : crack.normal;
+      out.polygons[i] = crack_polygon(tet_nodes(c.tet), c, clip);
+      const Eigen::Vector3d av = detail::polygon_area_vector(out.polygons[i]);
+      out.normals[i] = av.norm() > 0.0 ? Eigen::Vector3d(av.normalized()) : crack.normal;
       total_area += 0.5 * av.norm();
     }
     crack.area = total_area;
@@ -504,8 +619,7 @@ private:
       m_cuts_of_tet[tet].emplace_back(k, static_cast<int>(i));
     }
     m_cracks.push_back(std::move(crack));
-    relax(polygons, normals, t);
-    record_crack_hops();
+    return out;
   }
 
   const CrackCut& cut_of(int crack, int tet) const {
@@ -639,12 +753,13 @@ private:
   // Eqs. 2–4 around the new crack, in every tet within r_relax of its polygons (distances
   // through the body, by nearest-polygon propagation). Tensile-only clamp (paper-gaps §4,
   // reading b): at most the tensile normal stress along d is removed, so λ_max never rises.
-  void relax(const std::vector<std::vector<Eigen::Vector3d>>& polygons, const std::vector<Eigen::Vector3d>& normals,
-             double t) {
+  void relax(int k, const CrackPolygons& crack, double t) {
+    const auto& polygons = crack.polygons;
+    const auto& normals = crack.normals;
     const double radius = m_params.relax_radius, rate = m_params.relax_rate;
     const bool turning = m_params.crack_turning > 0.0;
     if ((rate <= 0.0 && !turning) || radius <= 0.0) return;
-    const auto& cuts = m_cracks.back().cuts;
+    const auto& cuts = m_cracks[static_cast<std::size_t>(k)].cuts;
     std::vector<std::pair<int, int>> seeds;
     seeds.reserve(cuts.size());
     for (std::size_t i = 0; i < cuts.size(); ++i) seeds.emplace_back(cuts[i].tet, static_cast<int>(i));
@@ -683,8 +798,8 @@ private:
   // all cracks so far (for the join rule of the flood). Hops through face adjacency, not
   // distances: a hop is about one element size, and a breadth-first pass over the few tets around
   // a crack costs a fraction of the polygon distances relaxation needs.
-  void record_crack_hops() {
-    const auto& cuts = m_cracks.back().cuts;
+  void record_crack_hops(int k) {
+    const auto& cuts = m_cracks[static_cast<std::size_t>(k)].cuts;
     m_hop_frontier.clear();
     for (const CrackCut& c : cuts) {
       m_near_crack[static_cast<std::size_t>(c.tet)] = 0;
@@ -732,6 +847,7 @@ private:
   std::vector<CrackSurface> m_cracks;
   double m_snap = 0.0, m_gc = 0.0, m_flaw = 0.0;
   detail::CrackPath::Options m_path;
+  int m_path_leaves = -1;  // a crack whose tets do not end the path being traced (a star's third arm)
   double m_max_slope = kInf;
   bool m_directional = true;
 

@@ -40,8 +40,8 @@ SECTION_NOTES = {
                                "(`mesh_s`, `prepare_s`: the one-off CGAL meshing and PreparedBody), one trial's σ⁰ for "
                                "the others (`eigensolve_s`: the one-off modal analysis); `fragments`: mean visible "
                                "fragments. What the figures say: only the mesh resolution is above the noise floor "
-                               "(7K 1.46×, 24K 1.23× the spread at 54K), and it is a bias, not scatter: coarser meshes "
-                               "break into fewer visible fragments (108, 123, 146 at 7K, 24K, 54K). Every σ⁰ "
+                               "({mesh_ratios} the spread at the finest), and it is a bias, not scatter: coarser "
+                               "meshes break into fewer visible fragments ({mesh_fragments}). Every σ⁰ "
                                "approximation lands at 0.6–0.85× the spread whatever its field error: the modal "
                                "basis's 14 % (m = 10) to 5.5 % (m = 100) give the same 0.06–0.08 with no trend, "
                                "because the crack sequence is chaotic in σ⁰ — single precision, which leaves σ⁰ equal "
@@ -49,7 +49,7 @@ SECTION_NOTES = {
                                "(`eq5_to_double`), and with 5 seeds differences below ≈ 0.02 are not resolved; so at "
                                "24K m = 10 in single precision (≈ 2 ms) is as good, for the pattern, as the direct "
                                "solve (≈ 7 ms). Raw tet stress (35–44 % field error) is also below the floor in "
-                               "distance but biases the count up by ≈ 10 % (136 vs 123, 158 vs 146): keep recovery, "
+                               "distance but biases the count up ({raw_fragments}): keep recovery, "
                                "which costs ≈ 2 ms at 24K.",
     "bench_prepare_body": "Per-body preparation, one call per body and size: tetrahedralise + assemble K (the "
                           "ElasticBody) + factor K with supports (the StaticSolver), each stage's process CPU seconds as a "
@@ -130,6 +130,34 @@ SECTION_NOTES = {
 UNIT_SCALE = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
 
 
+def medians_of(benchmarks):
+    medians = [b for b in benchmarks if b.get("aggregate_name", "median") == "median"]
+    return medians or [b for b in benchmarks if "aggregate_name" not in b]
+
+
+def mesh_resolution_figures(benchmarks):
+    """The figures bench_fracture_accuracy's note quotes, read from its BM_MeshResolution rows."""
+    rows = sorted((b for b in medians_of(benchmarks) if b.get("run_name", b["name"]).startswith("BM_MeshResolution")),
+                  key=lambda b: b["tets"])
+    if not rows:
+        return {"mesh_ratios": "not run", "mesh_fragments": "not run", "raw_fragments": "not run"}
+    label = lambda b: f"{round(b['tets'] / 1000)}K"
+    direct = {(b["tets"], b.get("recovered")): b for b in medians_of(benchmarks)
+              if b.get("run_name", b["name"]).startswith("BM_DirectStress")}
+    raw = [f"{direct[(t, 0)]['fragments']:.0f} raw against {direct[(t, 1)]['fragments']:.0f} recovered at "
+           f"{round(t / 1000)}K" for t in sorted({t for t, _ in direct}) if (t, 0) in direct and (t, 1) in direct]
+    return {
+        "raw_fragments": "; ".join(raw) or "not run",
+        "mesh_ratios": ", ".join(f"{label(b)} {b['eq5_over_spread']:.2f}×" for b in rows[:-1]),
+        "mesh_fragments": ", ".join(f"{b['fragments']:.0f}" for b in rows) + " at " +
+                          ", ".join(label(b) for b in rows),
+    }
+
+
+# Notes whose figures are filled in from the section's own results.
+NOTE_FIGURES = {"bench_fracture_accuracy": mesh_resolution_figures}
+
+
 def machine():
     cpu = platform.processor() or "unknown CPU"
     try:
@@ -166,9 +194,7 @@ def fmt(value):
 
 
 def table(benchmarks):
-    medians = [b for b in benchmarks if b.get("aggregate_name", "median") == "median"]
-    if not medians:
-        medians = [b for b in benchmarks if "aggregate_name" not in b]
+    medians = medians_of(benchmarks)
     skip = {"name", "run_name", "run_type", "repetitions", "repetition_index", "threads",
             "iterations", "real_time", "cpu_time", "time_unit", "aggregate_name",
             "aggregate_unit", "family_index", "per_family_instance_index", "label", "error_occurred",
@@ -217,6 +243,8 @@ def main():
         command_file = os.path.join(results_dir, name + ".command")
         run_command = open(command_file).read().strip() if os.path.exists(command_file) else command
         note = SECTION_NOTES.get(name, "")
+        if name in NOTE_FIGURES:
+            note = note.format(**NOTE_FIGURES[name](data["benchmarks"]))
         stamp = data.get("context", {}).get("date", "")
         sections[name] = (f"## `{name}`\n\n{note}\n\nRun {stamp} on {machine()}, commit {run_commit}, "
                           f"command `{run_command}`.\n\n{table(data['benchmarks'])}\n\n")

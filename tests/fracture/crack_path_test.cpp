@@ -47,7 +47,7 @@ TEST(CrackPath, AStraightCourseIsThePapersPlane) {
   const Eigen::Vector3d origin = plate.mesh->centroid(plate.tet_at({0.013, -0.02, 0.01}));
   const Eigen::Vector3d normal = Eigen::Vector3d(1.0, 0.4, 0.0).normalized();
   const CrackPath path(*plate.mesh, plate.body.surface_normals(), plate.tet_at(origin), origin, normal, options(0.04),
-                       [](int, const Eigen::Vector3d& n, const Eigen::Vector3d&, double) { return n; });
+                       [](int, int, const Eigen::Vector3d& n, const Eigen::Vector3d&, double) { return n; });
   // 1.08 m of course across the plate in 1 cm steps (to within a step at each edge).
   EXPECT_NEAR(0.01 * static_cast<double>(path.points().size() - 1), 1.077, 0.021);
   for (const Eigen::Vector3d& x : {Eigen::Vector3d(0.3, 0.1, 0.0), Eigen::Vector3d(-0.45, 0.4, 0.02),
@@ -65,7 +65,7 @@ TEST(CrackPath, ATurningCourseBendsNoTighterThanItsRadius) {
   const Eigen::Vector3d target = Eigen::Vector3d::UnitY();
   const double radius = 0.05;
   const CrackPath path(*plate.mesh, plate.body.surface_normals(), plate.tet_at(origin), origin, Eigen::Vector3d::UnitX(),
-                       options(radius), [&](int, const Eigen::Vector3d&, const Eigen::Vector3d&, double) { return target; });
+                       options(radius), [&](int, int, const Eigen::Vector3d&, const Eigen::Vector3d&, double) { return target; });
   const auto& p = path.points();
   ASSERT_GE(p.size(), 20u);
   for (std::size_t i = 1; i + 1 < p.size(); ++i) {
@@ -100,17 +100,58 @@ TEST(CrackPath, ArmsEndAtEarlierCracksAndFlatCracksStayPlanes) {
   CrackPath::Options o = options(0.04);
   o.ends_at = [&](int tet) { return std::abs(plate.mesh->centroid(tet).y()) > 0.2; };  // "cracks" at |y| = 0.2
   const CrackPath path(*plate.mesh, plate.body.surface_normals(), plate.tet_at(origin), origin, Eigen::Vector3d::UnitX(),
-                       o, [](int, const Eigen::Vector3d& n, const Eigen::Vector3d&, double) { return n; });
+                       o, [](int, int, const Eigen::Vector3d& n, const Eigen::Vector3d&, double) { return n; });
   for (const Eigen::Vector3d& x : path.points()) EXPECT_LT(std::abs(x.y()), 0.2 + 0.0125 + 0.045) << x.transpose();
   EXPECT_GT(std::abs(path.points().front().y()), 0.2);
   EXPECT_GT(std::abs(path.points().back().y()), 0.2);
 
   const CrackPath flat(*plate.mesh, plate.body.surface_normals(), plate.tet_at(origin), origin, Eigen::Vector3d::UnitZ(),
-                       options(0.04), [](int, const Eigen::Vector3d&, const Eigen::Vector3d&, double) {
+                       options(0.04), [](int, int, const Eigen::Vector3d&, const Eigen::Vector3d&, double) {
                          return Eigen::Vector3d(Eigen::Vector3d::UnitX());
                        });
   EXPECT_EQ(flat.points().size(), 1u);
   EXPECT_DOUBLE_EQ(flat(Eigen::Vector3d(0.3, 0.2, 0.015)), 0.015 - origin.z());
+}
+
+// A star crack's kinked course (docs/fracture.md, "Star cracks"): arms leaving the origin 120°
+// apart, each with its own normal. D vanishes along both arms, is negative inside the 120° wedge
+// between them and positive outside it, where the star's third arm runs, and changes
+// continuously across the wedge's bisector, where the nearest point switches arms.
+TEST(CrackPath, AKinkedCourseIsZeroAlongBothArmsAndSignedByItsWedge) {
+  const Plate plate;
+  const int origin_tet = plate.tet_at({0.0, 0.0, 0.01});
+  const Eigen::Vector3d origin = plate.mesh->centroid(origin_tet);
+  // The nearest surface's normal, which the path runs along (the top's or the bottom's): headings
+  // turn about it.
+  const Eigen::Vector3d up = plate.body.surface_normals().row(origin_tet).transpose();
+  const double third = 0.3;  // the third arm's heading, radians from x
+  const auto heading = [&](double a) {
+    return Eigen::Vector3d(std::cos(a) * Eigen::Vector3d::UnitX() + std::sin(a) * up.cross(Eigen::Vector3d::UnitX()));
+  };
+  const double kPi = std::acos(-1.0);
+  const Eigen::Vector3d minus_arm = heading(third + 2.0 * kPi / 3.0), plus_arm = heading(third - 2.0 * kPi / 3.0);
+  ASSERT_NEAR(std::abs(up.z()), 1.0, 1e-12);
+  const CrackPath path(*plate.mesh, plate.body.surface_normals(), origin_tet, origin, minus_arm.cross(up),
+                       up.cross(plus_arm), options(0.04),
+                       [](int, int, const Eigen::Vector3d& n, const Eigen::Vector3d&, double) { return n; });
+  for (double s : {0.02, 0.1, 0.3}) {
+    // Round-off of up to 30 steps of 1 cm.
+    EXPECT_NEAR(path(origin + s * minus_arm), 0.0, 1e-12) << s;
+    EXPECT_NEAR(path(origin + s * plus_arm), 0.0, 1e-12) << s;
+    // Inside, on the bisector: minus the distance to either arm.
+    EXPECT_NEAR(path(origin - s * heading(third)), -s * std::sin(kPi / 3.0), 1e-12) << s;
+    // Outside, along the third arm, the nearest point is the kink itself and D is the distance
+    // along the minus arm's normal, 30° off the third arm: positive, with no zero to cut.
+    EXPECT_NEAR(path(origin + s * heading(third)), s * std::cos(kPi / 6.0), 1e-12) << s;
+  }
+  // Within the first step of each arm, D is the distance to that arm along its own normal, not
+  // blended with the other arm's (the kink keeps both normals up to the origin).
+  EXPECT_NEAR(path(origin + 0.005 * plus_arm + 0.003 * up.cross(plus_arm)), 0.003, 1e-12);
+  EXPECT_NEAR(path(origin + 0.005 * minus_arm + 0.003 * minus_arm.cross(up)), 0.003, 1e-12);
+  // Across the bisector inside the wedge the two arms' distances agree: no jump.
+  const Eigen::Vector3d across = up.cross(heading(third));
+  const Eigen::Vector3d inside = origin - 0.1 * heading(third);
+  EXPECT_NEAR(path(inside + 1e-6 * across), path(inside - 1e-6 * across), 1e-5);
 }
 
 }  // namespace

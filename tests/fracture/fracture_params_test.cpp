@@ -25,8 +25,9 @@ double lowest(const ParameterInfo& p) { return p.min_exclusive ? std::nextafter(
 double highest(const ParameterInfo& p) { return p.max_exclusive ? std::nextafter(p.max, p.min) : p.max; }
 
 TEST(FractureParameterTable, RowsAreUniqueAndHoldTheirDefaults) {
-  // Table 2's 11 scalars (with K_IC), the resistance correlation, 4 noise octaves × 2, junction density
-  ASSERT_EQ(table().size(), 22u);
+  // Table 2's 11 scalars (with K_IC), the resistance correlation, crack turning, star biaxiality,
+  // 4 noise octaves × 2, junction density
+  ASSERT_EQ(table().size(), 23u);
   std::set<std::string> names, flags;
   const FractureParams defaults;
   for (std::size_t i = 0; i < table().size(); ++i) {

@@ -37,6 +37,7 @@ struct CrackSurface {
   std::vector<CrackCut> cuts;     ///< E_c, in the order the flood reached them; cuts[0] is the origin
   std::vector<int> stopped_on;    ///< earlier cracks it met and ended on (sorted, unique)
   double area = 0.0;              ///< area of its polygons, m²
+  int branch_of = -1;             ///< the star crack whose kink it leaves (a star's third arm), or -1
 };
 
 /// The crack polygon inside one tet: the zero set of the P1 interpolant (3 or 4 vertices, in a

@@ -48,6 +48,10 @@ struct FractureParams {
   /// direction pulls harder (docs/fracture.md, "Crack paths"). 0: the paper's noisy plane, one
   /// normal for the whole crack; 1: at once (maximum tangential stress criterion). Not in the paper.
   double crack_turning = 0.9;
+  /// b* in [0, 1]: a crack opens as a three-armed star (arms 120° apart: a Y junction) where the
+  /// in-plane stress at its origin is at least this biaxial, λ₂/λ₁ ≥ b* (docs/fracture.md, "Star
+  /// cracks"); 1: never, the paper's single crack. Not in the paper.
+  double star_biaxiality = 1.0;
 
   // Simulation (IN).
   double age = 10.0;                  ///< duration of Algorithm 1, age units
