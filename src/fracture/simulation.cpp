@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <optional>
@@ -147,6 +148,14 @@ public:
       m_max_slope = 2.0 * (1.0 + noise_slope);
       m_free_distance.assign(n, kInf);
       m_free_normal.assign(n, Eigen::Vector3d::Zero());
+    }
+    if (params.star_biaxiality < 1.0) {
+      // Each boundary node's outward normal (area-weighted over its faces), for a star's kink.
+      m_node_surface_normal.assign(static_cast<std::size_t>(m_mesh.node_count()), Eigen::Vector3d::Zero());
+      for (const BoundaryFace& f : m_mesh.boundary_faces())
+        for (int v : f.nodes) m_node_surface_normal[static_cast<std::size_t>(v)] += f.area * f.normal;
+      for (Eigen::Vector3d& nrm : m_node_surface_normal)
+        if (nrm.norm() > 0.0) nrm.normalize();
     }
     m_gc = critical_energy_release_rate(params);
     m_flaw = flaw_size(params);
@@ -343,6 +352,20 @@ private:
     return pos && neg;
   }
 
+  // Star cracks (docs/fracture.md): under in-plane tension nearly equal in every direction no
+  // direction is preferred, and a crack opens as three arms 120° apart (a Y) where one crack
+  // would leave a straight line. The arms: a kinked crack whose two arms leave the origin 120°
+  // apart, both 120° from the third, a crack of its own that runs from the kink. The third arm
+  // runs along the single crack's course, across the max principal direction, to one side or the
+  // other by (seed, crack).
+  struct StarArms {
+    Eigen::Vector3d minus_normal, plus_normal;  // the kinked crack's arms (CrackPath's kink)
+    Eigen::Vector3d third;                      // the third arm's direction along the surface
+    Eigen::Vector3d up;
+    Eigen::Vector3d kink = Eigen::Vector3d::Zero();  // where the arms meet, a node (kinked_field)
+    int start = -1;                                  // the tet the kinked crack floods from
+  };
+
   // Each cut's polygon (clipped at junctions) and unit normal, for the relaxation.
   struct CrackPolygons {
     std::vector<std::vector<Eigen::Vector3d>> polygons;
@@ -364,25 +387,96 @@ private:
     crack.normal = opening_direction(stress, principal, k);
     crack.opening_stress = principal.value;
     crack.noise_seed = noise_seed(k);
-    const std::optional<StarArms> star = star_arms(origin, stress, crack.normal, k);
-    CrackField surface(CrackSurfaceFunction(crack.origin, crack.normal, m_params.noise, crack.noise_seed));
-    if (m_params.crack_turning > 0.0 || star) {
-      const Eigen::Vector3d minus = star ? star->minus_normal : crack.normal;
-      const Eigen::Vector3d plus = star ? star->plus_normal : crack.normal;
-      surface.follow(detail::CrackPath(m_mesh, m_body.surface_normals(), origin, crack.origin, minus, plus, m_path,
-                                       turn_for(t, star.has_value())));
+    std::optional<StarArms> star = star_arms(origin, stress, crack.normal, k);
+    std::optional<CrackField> kinked;
+    if (star) kinked = kinked_field(crack, *star, t);
+    if (!kinked) star.reset();  // no node to kink at: one crack
+    CrackField surface = kinked ? std::move(*kinked) : single_field(crack, t);
+    // A star floods from a tet around its kink, which the opening tet may not be; the opening
+    // tet's flaw is spent either way.
+    m_initiable[static_cast<std::size_t>(origin)] = 0;
+    if (star) {
+      crack.origin_tet = star->start;
+      crack.origin = m_mesh.centroid(star->start);
     }
-    // Make the P1 interpolant vanish at the origin's centroid (the mean of its node values), so
-    // the opening element is always cut, however large the noise.
-    double mean = 0.0;
-    for (int i = 0; i < 4; ++i) mean += surface(m_mesh.nodes().row(m_mesh.tets()(origin, i)).transpose());
-    surface.subtract(0.25 * mean);
-    const CrackPolygons first = flood(std::move(crack), surface, t);
+    const int start = crack.origin_tet;
+    const CrackPolygons first = flood(std::move(crack), surface, start, t);
     record_crack_hops(k);
     std::optional<CrackPolygons> third;
     if (star && k + 1 < m_options.max_cracks) third = open_third_arm(k, *star, t);
     relax(k, first, t);
     if (third) relax(k + 1, *third, t);
+  }
+
+  // The paper's noisy plane through the origin's centroid with the crack's normal, or, for a
+  // turning crack, the noise on the distance to its traced course; its P1 interpolant made to
+  // vanish at the centroid (the mean of the origin's node values), so the opening element is
+  // always cut, however large the noise.
+  CrackField single_field(const CrackSurface& crack, double t) const {
+    CrackField surface(CrackSurfaceFunction(crack.origin, crack.normal, m_params.noise, crack.noise_seed));
+    if (m_params.crack_turning > 0.0) {
+      surface.follow(detail::CrackPath(m_mesh, m_body.surface_normals(), crack.origin_tet, crack.origin, crack.normal,
+                                       m_path, turn_for(t, false)));
+    }
+    double mean = 0.0;
+    for (int i = 0; i < 4; ++i) mean += surface(m_mesh.nodes().row(m_mesh.tets()(crack.origin_tet, i)).transpose());
+    surface.subtract(0.25 * mean);
+    return surface;
+  }
+
+  // A star's kinked crack, its kink at a node of the opening tet on the surface the star runs
+  // along (boundary normal within 45° of up), the nearest to the centroid that works; its
+  // function made to vanish there. At a node the P1 interpolant bends with the crack: the traces
+  // leave the node along the arms, exactly where the arms are straight, so the face sees a Y
+  // down to the junction. A kink inside a tet is one plane there, across the third arm: a T
+  // within half an element of the junction, which is where its directions are measured
+  // (8–16 mm) on any mesh coarser than that (docs/fracture.md, "Star cracks"). The flood starts
+  // in the first tet around the node (face neighbours, breadth first from the opening tet) that
+  // the crack cuts clearly, by more than a thousandth of an element. Sets star.kink and
+  // star.start; std::nullopt when no node qualifies (an opening tet off the surface).
+  std::optional<CrackField> kinked_field(const CrackSurface& crack, StarArms& star, double t) const {
+    const int origin = crack.origin_tet;
+    const double clear = 1e-3 * m_body.mean_edge_length();
+    std::array<int, 4> order{0, 1, 2, 3};
+    const auto node = [&](int tet, int i) {
+      return Eigen::Vector3d(m_mesh.nodes().row(m_mesh.tets()(tet, i)).transpose());
+    };
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const double da = (node(origin, a) - crack.origin).squaredNorm(), db = (node(origin, b) - crack.origin).squaredNorm();
+      return da != db ? da < db : a < b;
+    });
+    for (int i : order) {
+      const int v = m_mesh.tets()(origin, i);
+      if (!(m_node_surface_normal[static_cast<std::size_t>(v)].dot(star.up) >= std::sqrt(0.5))) continue;
+      const Eigen::Vector3d kink = node(origin, i);
+      CrackField surface(CrackSurfaceFunction(kink, crack.normal, m_params.noise, crack.noise_seed));
+      surface.follow(detail::CrackPath(m_mesh, m_body.surface_normals(), origin, kink, star.minus_normal,
+                                       star.plus_normal, m_path, turn_for(t, true)));
+      surface.subtract(surface(kink));
+      // The tets around node v, breadth first through faces from the opening tet.
+      std::vector<int> around{origin};
+      for (std::size_t q = 0; q < around.size() && q < 256; ++q) {
+        const int tet = around[q];
+        bool pos = false, neg = false;
+        for (int j = 0; j < 4; ++j) {
+          const double value = surface(node(tet, j));
+          pos = pos || value > clear;
+          neg = neg || value < -clear;
+        }
+        if (pos && neg) {
+          star.kink = kink;
+          star.start = tet;
+          return surface;
+        }
+        for (int f = 0; f < 4; ++f) {
+          const int u = m_mesh.neighbours()(tet, f);
+          if (u < 0 || std::find(around.begin(), around.end(), u) != around.end()) continue;
+          for (int j = 0; j < 4; ++j)
+            if (m_mesh.tets()(u, j) == v) around.push_back(u);
+        }
+      }
+    }
+    return std::nullopt;
   }
 
   std::uint64_t noise_seed(int k) const {
@@ -392,7 +486,9 @@ private:
   // A star's arms turn only while closing in on an earlier crack within r_relax (to meet it
   // square). In the open, arms 120° apart turn toward the same principal direction, and so do
   // two arms leaving an earlier crack: they converged into teardrop loops, because the
-  // relaxation that keeps real arms apart comes only after the path is traced.
+  // relaxation that keeps real arms apart comes only after the path is traced. (Letting them turn
+  // also beyond r_relax from the kink made the Ts no squarer: 24.7° off 90° against 24.0°,
+  // FracturePhysics.)
   detail::CrackPath::Turn turn_for(double t, bool star_arm) const {
     return [this, t, star_arm](int from, int tet, const Eigen::Vector3d& normal, const Eigen::Vector3d& up,
                                double step) {
@@ -401,18 +497,6 @@ private:
       return turn_heading(normal, tet, up, step, t);
     };
   }
-
-  // Star cracks (docs/fracture.md): under in-plane tension nearly equal in every direction no
-  // direction is preferred, and a crack opens as three arms 120° apart (a Y) where one crack
-  // would leave a straight line. The arms: a kinked crack whose two arms leave the origin 120°
-  // apart, both 120° from the third, a crack of its own that runs from the kink. The third arm
-  // runs along the single crack's course, across the max principal direction, to one side or the
-  // other by (seed, crack).
-  struct StarArms {
-    Eigen::Vector3d minus_normal, plus_normal;  // the kinked crack's arms (CrackPath's kink)
-    Eigen::Vector3d third;                      // the third arm's direction along the surface
-    Eigen::Vector3d up;
-  };
 
   std::optional<StarArms> star_arms(int origin, const Voigt& stress, const Eigen::Vector3d& normal, int k) const {
     if (!(m_params.star_biaxiality < 1.0)) return std::nullopt;
@@ -431,10 +515,10 @@ private:
     const Eigen::Vector3d minus_arm = turned(along, 2.0 * kPi / 3.0), plus_arm = turned(along, -2.0 * kPi / 3.0);
     // Normals on one side of the path, up × the direction of travel (in along the minus arm,
     // out along the plus arm): CrackPath's convention.
-    return StarArms{minus_arm.cross(up), up.cross(plus_arm), along, up};
+    return StarArms{minus_arm.cross(up), up.cross(plus_arm), along, up, Eigen::Vector3d::Zero(), -1};
   }
 
-  // The star's third arm, crack k + 1: through the kinked crack's origin o along `star.third`
+  // The star's third arm, crack k + 1: through the kinked crack's kink o along `star.third`
   // (its noise made to vanish at o, so it meets the kink there), opened in the first tet along
   // the arm, within a few elements of o, that no crack cuts and its own surface does; it floods
   // from there both ways, back to the kink, where it ends on the kinked crack (a T by the flood's
@@ -442,7 +526,7 @@ private:
   // the arm to leave the kink): the star stays a kinked crack.
   std::optional<CrackPolygons> open_third_arm(int k, const StarArms& star, double t) {
     const CrackSurface& kinked = m_cracks[static_cast<std::size_t>(k)];
-    const Eigen::Vector3d o = kinked.origin;
+    const Eigen::Vector3d o = star.kink;
     CrackSurface crack;
     crack.id = k + 1;
     crack.time = t;
@@ -467,16 +551,15 @@ private:
       crack.origin = m_mesh.centroid(tet);
       crack.opening_stress = max_principal_stress(stress_at(tet, t));
       crack.branch_of = k;
-      return flood(std::move(crack), surface, t);
+      return flood(std::move(crack), surface, tet, t);
     }
     return std::nullopt;
   }
 
-  // Floods `crack` (id, time, origin tet and normal set) from its origin tet through the tets
-  // `surface` crosses, and adds it to the cracks.
-  CrackPolygons flood(CrackSurface crack, const CrackField& surface, double t) {
+  // Floods `crack` (id, time, origin tet and normal set) from tet `origin`, which `surface` cuts,
+  // through the tets it crosses, and adds it to the cracks.
+  CrackPolygons flood(CrackSurface crack, const CrackField& surface, int origin, double t) {
     const int k = crack.id;
-    const int origin = crack.origin_tet;
 
     // Flood (paper-gaps §3): breadth first through the faces the surface crosses, with an
     // energy budget carried along each path (docs/fracture.md): each tet adds A_e (G_e − G_c),
@@ -840,6 +923,8 @@ private:
   // the relaxation direction d of its nearest polygon (turning_stress).
   std::vector<double> m_free_distance;
   std::vector<Eigen::Vector3d> m_free_normal;
+  // With star cracks: each boundary node's outward normal (zero inside).
+  std::vector<Eigen::Vector3d> m_node_surface_normal;
   std::vector<int> m_hop_frontier, m_hop_next;
   // A tip this many tets from an earlier crack, and closing in, runs on to it whatever its budget.
   static constexpr int kJoinHops = 3;

@@ -29,7 +29,10 @@ struct CrackCut {
 struct CrackSurface {
   int id = -1;                    ///< index in FractureResult::cracks, in order of opening
   double time = 0.0;              ///< when it opened (age units)
-  int origin_tet = -1;            ///< the element whose stress exceeded its resistance
+  /// The element whose stress exceeded its resistance, where the crack's flood starts (cuts[0]);
+  /// for a star crack, the tet around its kink it floods from, beside that element; for a star's
+  /// third arm, the first tet along it.
+  int origin_tet = -1;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< centroid of origin_tet, m
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX(); ///< unit max principal direction there
   double opening_stress = 0.0;    ///< λ_max at the origin when it opened, Pa

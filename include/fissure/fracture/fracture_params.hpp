@@ -51,7 +51,7 @@ struct FractureParams {
   /// b* in [0, 1]: a crack opens as a three-armed star (arms 120° apart: a Y junction) where the
   /// in-plane stress at its origin is at least this biaxial, λ₂/λ₁ ≥ b* (docs/fracture.md, "Star
   /// cracks"); 1: never, the paper's single crack. Not in the paper.
-  double star_biaxiality = 1.0;
+  double star_biaxiality = 0.7;
 
   // Simulation (IN).
   double age = 10.0;                  ///< duration of Algorithm 1, age units
