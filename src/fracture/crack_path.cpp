@@ -94,8 +94,12 @@ void CrackPath::trace_arm(const TetMesh& mesh, const Eigen::MatrixX3d& surface_n
   Eigen::Vector3d direction = sign * seed.normalized();
   int tet = origin_tet;
   const double step = options.step;
+  if (!(step > 0.0)) return;  // no course to trace: the crack stays the plane through its origin
   const double max_turn = step / options.min_radius;  // radians per step
-  const auto steps = static_cast<int>(std::ceil(options.max_length / step));
+  // As a double first: a denormal step makes the count infinite, and converting that to int is
+  // undefined.
+  const double wanted = std::ceil(options.max_length / step);
+  const int steps = wanted < 1e7 ? static_cast<int>(wanted) : 10'000'000;
   int after_end = -1;  // steps since the path first entered a tet where it may end
   for (int i = 0; i < steps && after_end < kStepsPastEnd; ++i) {
     const Eigen::Vector3d next = points.back() + step * direction;

@@ -108,8 +108,8 @@ const RelaxationComparison& comparison() {
 // Eq. 3 removes the stress along the crack normal, so the next crack nearby runs across it,
 // and a turning crack closing in on an earlier one turns to meet it square; Eq. 4 removes
 // stress in every direction and leaves the next crack's direction to the load and the flaws.
-// Measured over the T junctions (20 seeds): |angle − 90°| 22.5 ± 1.2° against 29.4 ± 1.6°, a
-// difference of 6.9° against a margin of 4.0°. (Before star cracks, on 2 cm cells, 13.0° against
+// Measured over the T junctions (20 seeds): |angle − 90°| 22.9 ± 1.1° against 29.4 ± 1.6°, a
+// difference of 6.5° against a margin of 3.9°. (Before star cracks, on 2 cm cells, 13.0° against
 // 32.3°: Eq. 4 now opens most cracks as stars, and fewer Ts are left to skew; star arms run
 // straight from their kink and meet earlier cracks less squarely than turning single cracks.)
 TEST(FracturePhysics, DirectionalRelaxationGivesJunctionsNearerRightAngles) {
@@ -123,8 +123,8 @@ TEST(FracturePhysics, DirectionalRelaxationGivesJunctionsNearerRightAngles) {
 // Crack paths (docs/fracture.md): cracks that turn toward the principal direction, which near an
 // earlier crack lies along it, meet it nearer a right angle than the paper's planes, which keep
 // the direction they opened with. Measured over the T junctions (20 seeds): |angle − 90°|
-// 22.5 ± 1.2° turning against 28.1 ± 1.0° straight (Eq. 3 both), a difference of 5.6° against a
-// margin of 3.1°.
+// 22.9 ± 1.1° turning against 28.1 ± 1.0° straight (Eq. 3 both), a difference of 5.2° against a
+// margin of 3.0°.
 TEST(FracturePhysics, TurningCracksMeetEarlierOnesNearerRightAngles) {
   const RelaxationComparison& c = comparison();
   ASSERT_EQ(c.straight.angle_distance.values.size(), static_cast<std::size_t>(RelaxationComparison::kSeeds));
@@ -138,9 +138,9 @@ TEST(FracturePhysics, TurningCracksMeetEarlierOnesNearerRightAngles) {
 // add the same stress in every in-plane direction except Eq. 3, which removes the normal stress
 // across a crack: it leaves the stress near a crack pulling along it, and the next crack there
 // opens single, in a T. Eq. 4 keeps λ₁ − λ₂ as the load made it, and more cracks open as stars.
-// Measured (20 seeds): Y fraction 0.275 ± 0.014 (Eq. 4) against 0.166 ± 0.008 (Eq. 3), a
-// difference of 0.109 against a margin of 0.032; T fraction 0.708 ± 0.014 against 0.802 ± 0.011
-// (difference 0.094, margin 0.036). Before star cracks: 0 and 2 Y junctions in 12 seeds.
+// Measured (20 seeds): Y fraction 0.275 ± 0.014 (Eq. 4) against 0.167 ± 0.007 (Eq. 3), a
+// difference of 0.108 against a margin of 0.031; T fraction 0.708 ± 0.014 against 0.802 ± 0.010
+// (difference 0.094, margin 0.034). Before star cracks: 0 and 2 Y junctions in 12 seeds.
 TEST(FracturePhysics, IsotropicRelaxationGivesMoreYJunctions) {
   const RelaxationComparison& c = comparison();
   EXPECT_GT(c.directional.t_fraction.mean() - c.isotropic.t_fraction.mean(),

@@ -86,6 +86,28 @@ TEST(FractureStability, EveryParameterAtBothEndsOfItsRange) {
   EXPECT_GE(limited, 2) << runs << " runs";
 }
 
+// r_relax across the scales the fit's prior reaches (Table 3: 0–100 % of √(fragment area), so
+// micrometres at its low end): bounded time. A turning crack's course was traced in steps of
+// r_relax/8, so at 3 µm (a prior draw) one path had millions of points and a trial took 390 s.
+// (The table's own lowest value, the next double above 0, made the step count infinite and its
+// conversion to int undefined; it happened to trace nothing.)
+TEST(FractureStability, TinyRelaxationRadiiStayBounded) {
+  SimulationOptions options;
+  options.max_cracks = kMaxCracks;
+  for (double radius : {3e-6, 1e-4, 1e-3}) {
+    FractureParams p;
+    p.relax_radius = radius;
+    const std::string what = "relax_radius = " + format_number(radius);
+    const auto start = std::chrono::steady_clock::now();
+    const test::DefaultRun run = test::run_default_scenario(prepared_for(p), p, 17, options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    test::expect_sane_result(*tile_mesh(), p, options, run.result, what);
+    // As in EveryParameterAtBothEndsOfItsRange: ~0.1 s here, 20× that is a runaway.
+    EXPECT_LT(seconds, 2.0) << what;
+    std::printf("%-20s %4zu cracks %6.1f ms\n", what.c_str(), run.result.cracks.size(), 1e3 * seconds);
+  }
+}
+
 // The limit is reported honestly: a run stopped at n cracks is the first n cracks of the run
 // without a limit, and a limit equal to the count the run reaches on its own is not "reached".
 TEST(FractureStability, CrackLimitIsAPrefixAndReportedExactly) {
