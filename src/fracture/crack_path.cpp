@@ -81,6 +81,13 @@ CrackPath::CrackPath(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normal
   m_points.insert(m_points.end(), points_plus.begin() + from, points_plus.end());
   m_normals.insert(m_normals.end(), normals_plus.begin() + from, normals_plus.end());
   m_up.insert(m_up.end(), up_plus.begin() + from, up_plus.end());
+  // Each segment along the surface, once: D is evaluated at every node a crack's flood reaches.
+  for (std::size_t i = 0; i + 1 < m_points.size(); ++i) {
+    const Eigen::Vector3d ab = m_points[i + 1] - m_points[i];
+    const Eigen::Vector3d& up = m_up[i + 1];
+    m_along.push_back(ab - ab.dot(up) * up);
+    m_along_length2.push_back(m_along.back().squaredNorm());
+  }
 }
 
 void CrackPath::trace_arm(const TetMesh& mesh, const Eigen::MatrixX3d& surface_normals, int origin_tet, double sign,
@@ -138,12 +145,11 @@ double CrackPath::operator()(const Eigen::Vector3d& x) const {
   const std::size_t last = m_points.size() - 2;
   for (std::size_t i = 0; i + 1 < m_points.size(); ++i) {
     const Eigen::Vector3d& a = m_points[i];
-    const Eigen::Vector3d ab = m_points[i + 1] - a;
     const Eigen::Vector3d& up = m_up[i + 1];
-    const Eigen::Vector3d ab_t = ab - ab.dot(up) * up;
+    const Eigen::Vector3d& ab_t = m_along[i];
     Eigen::Vector3d ax = x - a;
     ax -= ax.dot(up) * up;
-    const double len2 = ab_t.squaredNorm();
+    const double len2 = m_along_length2[i];
     double s = len2 > 0.0 ? ax.dot(ab_t) / len2 : 0.0;
     const double lo = i == 0 ? -std::numeric_limits<double>::infinity() : 0.0;
     const double hi = i == last ? std::numeric_limits<double>::infinity() : 1.0;

@@ -81,6 +81,8 @@ private:
   std::vector<Eigen::Vector3d> m_points;   // P_i
   std::vector<Eigen::Vector3d> m_normals;  // N_i, unit
   std::vector<Eigen::Vector3d> m_up;       // the surface normal at P_i, unit
+  std::vector<Eigen::Vector3d> m_along;    // segment i, P_i → P_i+1, along the surface (up_i+1 removed)
+  std::vector<double> m_along_length2;     // |m_along[i]|²
 };
 
 }  // namespace fissure::detail

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <functional>
 #include <limits>
-#include <queue>
 #include <utility>
 #include <vector>
 
@@ -32,8 +31,11 @@ public:
   void run(const std::vector<std::pair<int, int>>& seeds, Distance&& distance, double max_distance) {
     ++m_current;
     m_reached.clear();
-    using Entry = std::pair<double, int>;  // (distance, tet); ties by tet index: deterministic
-    std::priority_queue<Entry, std::vector<Entry>, std::greater<>> heap;
+    // A min-heap of (distance, tet), ties by tet index (deterministic), kept between runs so a
+    // run does not allocate.
+    std::vector<Entry>& heap = m_heap;
+    heap.clear();
+    const std::greater<> later;
     auto offer = [&](int tet, int seed) {
       const auto t = static_cast<std::size_t>(tet);
       if (m_stamp[t] == m_current + kSettled) return;  // final: no distance to compute
@@ -44,13 +46,15 @@ public:
       m_stamp[t] = m_current;
       m_distance[t] = d;
       m_seed[t] = seed;
-      heap.emplace(d, tet);
+      heap.emplace_back(d, tet);
+      std::push_heap(heap.begin(), heap.end(), later);
     };
     for (const auto& [tet, seed] : seeds) offer(tet, seed);
     const auto& neighbours = m_mesh.neighbours();
     while (!heap.empty()) {
-      const auto [d, tet] = heap.top();
-      heap.pop();
+      std::pop_heap(heap.begin(), heap.end(), later);
+      const auto [d, tet] = heap.back();
+      heap.pop_back();
       const auto t = static_cast<std::size_t>(tet);
       if (m_stamp[t] != m_current || d != m_distance[t]) continue;  // stale entry
       m_stamp[t] = m_current + kSettled;
@@ -70,7 +74,9 @@ public:
 private:
   // A run uses two stamp values: m_current (queued) and m_current + kSettled (final).
   static constexpr unsigned kSettled = 1;
+  using Entry = std::pair<double, int>;
   const TetMesh& m_mesh;
+  std::vector<Entry> m_heap;
   std::vector<unsigned> m_stamp;
   std::vector<double> m_distance;
   std::vector<int> m_seed;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace fissure::detail {
@@ -18,47 +19,37 @@ inline Eigen::Vector3d polygon_area_vector(const std::vector<Eigen::Vector3d>& p
 
 inline double polygon_area(const std::vector<Eigen::Vector3d>& p) { return 0.5 * polygon_area_vector(p).norm(); }
 
-inline Eigen::Vector3d polygon_centroid(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& q : p) c += q;
-  return p.empty() ? c : Eigen::Vector3d(c / static_cast<double>(p.size()));
-}
-
-inline double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (x - (a + t * ab)).norm();
-}
-
 // Distance from x to a planar convex polygon with unit normal n: to the plane when x projects
-// inside it, else to its nearest edge.
+// inside it (on the same side of every edge, the winding either way round), else to its nearest
+// edge. The edges are measured only when outside: relaxation calls this for every tet near a
+// crack, and most of them project inside the polygon of the crack's nearest tet.
 inline double polygon_distance(const Eigen::Vector3d& x, const std::vector<Eigen::Vector3d>& p,
                                const Eigen::Vector3d& n) {
   if (p.empty()) return std::numeric_limits<double>::infinity();
   if (p.size() == 1) return (x - p[0]).norm();
   const double h = n.dot(x - p[0]);
   const Eigen::Vector3d y = x - h * n;
-  bool inside = p.size() >= 3;
+  if (p.size() >= 3) {
+    bool left = true, right = true;  // no edge with y strictly right of it / strictly left of it
+    for (std::size_t i = 0; i < p.size() && (left || right); ++i) {
+      const Eigen::Vector3d& a = p[i];
+      const Eigen::Vector3d& b = p[(i + 1) % p.size()];
+      const double side = n.dot((b - a).cross(y - a));
+      if (side < 0.0) left = false;
+      if (side > 0.0) right = false;
+    }
+    if (left || right) return std::abs(h);
+  }
+  // √ of the least squared distance equals the least distance exactly (√ rounds monotonically).
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Eigen::Vector3d& a = p[i];
-    const Eigen::Vector3d& b = p[(i + 1) % p.size()];
-    if (inside && n.dot((b - a).cross(y - a)) < 0.0) inside = false;
-    best = std::min(best, segment_distance(x, a, b));
+    const Eigen::Vector3d ab = p[(i + 1) % p.size()] - a;
+    const double len2 = ab.squaredNorm();
+    const double t = len2 > 0.0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+    best = std::min(best, (x - (a + t * ab)).squaredNorm());
   }
-  if (inside) {
-    // The winding may be either way round: inside means on the same side of every edge.
-    return std::abs(h);
-  }
-  // Try the opposite winding before falling back to the edges.
-  bool inside_reversed = p.size() >= 3;
-  for (std::size_t i = 0; i < p.size() && inside_reversed; ++i) {
-    const Eigen::Vector3d& a = p[i];
-    const Eigen::Vector3d& b = p[(i + 1) % p.size()];
-    if (n.dot((b - a).cross(y - a)) > 0.0) inside_reversed = false;
-  }
-  return inside_reversed ? std::abs(h) : best;
+  return std::sqrt(best);
 }
 
 }  // namespace fissure::detail

@@ -584,6 +584,9 @@ private:
       double budget;  // energy carried along the path to this tet, J
     };
     std::deque<Front> frontier;
+    // Each cut's polygon (clipped at a junction) as the flood measured it, kept for the crack's
+    // area and the relaxation.
+    CrackPolygons out;
     double area = 0.0;
     auto release = [&](int tet, const std::vector<Eigen::Vector3d>& polygon) {
       const Eigen::Vector3d av = detail::polygon_area_vector(polygon);
@@ -595,7 +598,8 @@ private:
     };
     {
       CrackCut first = make_cut(k, surface, origin);
-      const auto [gain, a_e] = release(origin, crack_polygon(tet_nodes(origin), first));
+      out.polygons.push_back(crack_polygon(tet_nodes(origin), first));
+      const auto [gain, a_e] = release(origin, out.polygons.back());
       area = a_e;
       cuts.push_back(first);
       m_flood_stamp[static_cast<std::size_t>(origin)] = k;
@@ -675,6 +679,7 @@ private:
         area += a_e;
         m_flood_stamp[static_cast<std::size_t>(u)] = k;
         cuts.push_back(cut);
+        out.polygons.push_back(std::move(polygon));
         if (u_clip) stopped_on.push_back(cut.clipped_by);
         frontier.push_back(
             {u, static_cast<int>(cuts.size()) - 1, paid ? 0 : front.free_steps + 1, paid ? path_budget : 0.0});
@@ -684,16 +689,9 @@ private:
     stopped_on.erase(std::unique(stopped_on.begin(), stopped_on.end()), stopped_on.end());
     crack.stopped_on = std::move(stopped_on);
 
-    // Polygons of every cut (clipped at junctions), for the crack's area and the relaxation.
-    CrackPolygons out;
-    out.polygons.resize(cuts.size());
     out.normals.resize(cuts.size());
     double total_area = 0.0;
     for (std::size_t i = 0; i < cuts.size(); ++i) {
-      const CrackCut& c = cuts[i];
-      const CrackCut* clip = nullptr;
-      if (c.clipped_by >= 0) clip = &cut_of(c.clipped_by, c.tet);
-      out.polygons[i] = crack_polygon(tet_nodes(c.tet), c, clip);
       const Eigen::Vector3d av = detail::polygon_area_vector(out.polygons[i]);
       out.normals[i] = av.norm() > 0.0 ? Eigen::Vector3d(av.normalized()) : crack.normal;
       total_area += 0.5 * av.norm();

@@ -26,7 +26,7 @@ public:
   const Eigen::VectorXd& surface_distances() const { return m_surface_distances; }
   /// The tangent-plane projector I − n nᵀ of each tet in Voigt order (xx, yy, zz, yz, xz, xy):
   /// dσ_e adds stress_rate · this row per age unit (docs/architecture.md, "Fracture simulation").
-  const Eigen::Matrix<double, Eigen::Dynamic, 6>& tangent_projectors() const { return m_tangent; }
+  const Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor>& tangent_projectors() const { return m_tangent; }
   /// Mean edge length h of the mesh, m.
   double mean_edge_length() const { return m_mean_edge; }
   /// Mass of the body for `density` (kg/m³).
@@ -36,7 +36,7 @@ private:
   std::shared_ptr<const TetMesh> m_mesh;
   Eigen::MatrixX3d m_surface_normals;
   Eigen::VectorXd m_surface_distances;
-  Eigen::Matrix<double, Eigen::Dynamic, 6> m_tangent;
+  Eigen::Matrix<double, Eigen::Dynamic, 6, Eigen::RowMajor> m_tangent;
   double m_mean_edge = 0.0;
 };
 
