@@ -3,7 +3,6 @@
 #include "fissure/mesh/tet_mesh.hpp"
 
 #include <Eigen/Geometry>
-#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -12,33 +11,10 @@
 namespace fissure::detail {
 namespace {
 
-// A linear function of position: the P1 interpolant of one cut's node values in the tet.
-struct Linear {
-  Eigen::Vector3d gradient;
-  Eigen::Vector3d origin;  // node 0
-  double value0 = 0.0;
-  double operator()(const Eigen::Vector3d& x) const { return value0 + gradient.dot(x - origin); }
-};
-
-Linear interpolant(const Eigen::Matrix<double, 4, 3>& nodes, const std::array<double, 4>& v) {
-  Eigen::Matrix3d a;
-  for (int i = 0; i < 3; ++i) a.row(i) = nodes.row(i + 1) - nodes.row(0);
-  const Eigen::Vector3d g = a.partialPivLu().solve(Eigen::Vector3d(v[1] - v[0], v[2] - v[0], v[3] - v[0]));
-  return {g, nodes.row(0).transpose(), v[0]};
-}
-
 bool lexicographically_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   if (a.x() != b.x()) return a.x() < b.x();
   if (a.y() != b.y()) return a.y() < b.y();
   return a.z() < b.z();
-}
-
-// Where the segment (a, b) with values (la, lb) of opposite signs crosses zero, computed from the
-// lexicographically first end so the two faces that share the segment get the same bits.
-Eigen::Vector3d crossing(const Eigen::Vector3d& a, double la, const Eigen::Vector3d& b, double lb) {
-  if (lexicographically_before(b, a)) return crossing(b, lb, a, la);
-  const double t = la / (la - lb);
-  return a + t * (b - a);
 }
 
 Eigen::Vector3d area_vector(const std::vector<Eigen::Vector3d>& p) {
@@ -47,39 +23,78 @@ Eigen::Vector3d area_vector(const std::vector<Eigen::Vector3d>& p) {
   return sum;
 }
 
+// Sums over the tet's nodes in one fixed order (TetPieceOptions::node_order).
+class TetFrame {
+public:
+  TetFrame(const Eigen::Matrix<double, 4, 3>& nodes, const std::array<int, 4>& order) : m_nodes(nodes), m_order(order) {}
+
+  double value(const std::array<double, 4>& node_values, const Eigen::Vector4d& w) const {
+    double s = 0.0;
+    for (int i : m_order) s += w(i) * node_values[static_cast<std::size_t>(i)];
+    return s;
+  }
+
+  Eigen::Vector3d position(const Eigen::Vector4d& w) const {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int i : m_order) x += w(i) * m_nodes.row(i).transpose();
+    return x;
+  }
+
+private:
+  const Eigen::Matrix<double, 4, 3>& m_nodes;
+  std::array<int, 4> m_order;
+};
+
+// One linear function to split by: a cut's node values, times ±1.
+struct SplitPlane {
+  const std::array<double, 4>* node_values;
+  double sign;
+  Eigen::Vector3d gradient;  // of sign·S in space, for the section's orientation
+  PieceFaceKind kind;
+  int index;
+};
+
 struct Split {
   std::optional<TetPiece> positive, negative;  // f > 0 and f < 0; empty when nothing is there
 };
 
-// The two sides of convex `piece` across f = 0; the new faces on f = 0 are of `kind`/`index`.
-// Points within `tolerance` of the plane (in f's units) are on it: they go to both sides and
-// no crossing is computed next to them.
-Split split(const TetPiece& piece, const Linear& f, double tolerance, PieceFaceKind kind, int index,
-            double min_area2) {
+// The two sides of convex `piece` across f = 0. Points with |f| ≤ on_plane are on the plane:
+// they go to both sides and no crossing is computed next to them. A crossing is computed from
+// its segment's lexicographically first end, so the faces sharing the segment (in this tet or
+// the next) get the same bits.
+Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plane, double on_plane, double min_area2) {
   TetPiece pos{piece.key, {}}, neg{piece.key, {}};
-  std::vector<Eigen::Vector3d> cap;  // the section's points, unordered
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector4d>> cap;  // the section's points, unordered
   bool any_pos = false, any_neg = false;
   for (const PieceFace& face : piece.faces) {
     const std::size_t n = face.points.size();
     std::vector<double> value(n);
     std::vector<int> side(n);
     for (std::size_t i = 0; i < n; ++i) {
-      value[i] = f(face.points[i]);
-      side[i] = value[i] > tolerance ? 1 : (value[i] < -tolerance ? -1 : 0);
+      value[i] = plane.sign * frame.value(*plane.node_values, face.weights[i]);
+      side[i] = value[i] > on_plane ? 1 : (value[i] < -on_plane ? -1 : 0);
       any_pos = any_pos || side[i] > 0;
       any_neg = any_neg || side[i] < 0;
     }
-    PieceFace fp{face.kind, face.index, {}}, fn{face.kind, face.index, {}};
+    PieceFace fp{face.kind, face.index, {}, {}}, fn{face.kind, face.index, {}, {}};
+    const auto add = [](PieceFace& f, const Eigen::Vector3d& x, const Eigen::Vector4d& w) {
+      f.points.push_back(x);
+      f.weights.push_back(w);
+    };
     for (std::size_t i = 0; i < n; ++i) {
       const std::size_t j = (i + 1) % n;
-      if (side[i] >= 0) fp.points.push_back(face.points[i]);
-      if (side[i] <= 0) fn.points.push_back(face.points[i]);
-      if (side[i] == 0) cap.push_back(face.points[i]);
+      if (side[i] >= 0) add(fp, face.points[i], face.weights[i]);
+      if (side[i] <= 0) add(fn, face.points[i], face.weights[i]);
+      if (side[i] == 0) cap.emplace_back(face.points[i], face.weights[i]);
       if (side[i] * side[j] < 0) {
-        const Eigen::Vector3d q = crossing(face.points[i], value[i], face.points[j], value[j]);
-        fp.points.push_back(q);
-        fn.points.push_back(q);
-        cap.push_back(q);
+        std::size_t a = i, b = j;
+        if (lexicographically_before(face.points[j], face.points[i])) std::swap(a, b);
+        const double t = value[a] / (value[a] - value[b]);
+        const Eigen::Vector4d w = face.weights[a] + t * (face.weights[b] - face.weights[a]);
+        const Eigen::Vector3d x = frame.position(w);
+        add(fp, x, w);
+        add(fn, x, w);
+        cap.emplace_back(x, w);
       }
     }
     if (fp.points.size() >= 3 && area_vector(fp.points).squaredNorm() > min_area2) pos.faces.push_back(std::move(fp));
@@ -95,29 +110,47 @@ Split split(const TetPiece& piece, const Linear& f, double tolerance, PieceFaceK
     return out;
   }
   // The section: the cap points without repeats (each crossing is found by both faces of its
-  // edge, with the same bits), in order round their mean in the plane.
-  std::sort(cap.begin(), cap.end(), lexicographically_before);
-  cap.erase(std::unique(cap.begin(), cap.end()), cap.end());
+  // segment, with the same bits), in order round their mean in the plane.
+  const auto before = [](const auto& a, const auto& b) { return lexicographically_before(a.first, b.first); };
+  std::sort(cap.begin(), cap.end(), before);
+  cap.erase(std::unique(cap.begin(), cap.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+            cap.end());
   if (cap.size() >= 3) {
-    const Eigen::Vector3d normal = f.gradient.normalized();  // out of the negative side
+    const Eigen::Vector3d normal = plane.gradient.normalized();  // out of the negative side
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-    for (const auto& p : cap) centre += p;
+    for (const auto& p : cap) centre += p.first;
     centre /= static_cast<double>(cap.size());
-    const Eigen::Vector3d u = (cap[0] - centre).normalized();
+    const Eigen::Vector3d u = (cap[0].first - centre).normalized();
     const Eigen::Vector3d w = normal.cross(u);
-    std::sort(cap.begin(), cap.end(), [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-      return std::atan2((a - centre).dot(w), (a - centre).dot(u)) < std::atan2((b - centre).dot(w), (b - centre).dot(u));
-    });
+    const auto angle = [&](const Eigen::Vector3d& x) { return std::atan2((x - centre).dot(w), (x - centre).dot(u)); };
+    std::sort(cap.begin(), cap.end(), [&](const auto& a, const auto& b) { return angle(a.first) < angle(b.first); });
     // Counter-clockwise about `normal`: outward for the negative side, inward for the positive.
-    if (area_vector(cap).squaredNorm() > min_area2) {
-      neg.faces.push_back({kind, index, cap});
-      std::reverse(cap.begin(), cap.end());
-      pos.faces.push_back({kind, index, std::move(cap)});
+    PieceFace section{plane.kind, plane.index, {}, {}};
+    for (const auto& [x, wt] : cap) {
+      section.points.push_back(x);
+      section.weights.push_back(wt);
+    }
+    if (area_vector(section.points).squaredNorm() > min_area2) {
+      neg.faces.push_back(section);
+      std::reverse(section.points.begin(), section.points.end());
+      std::reverse(section.weights.begin(), section.weights.end());
+      pos.faces.push_back(std::move(section));
     }
   }
   if (pos.faces.size() >= 4) out.positive = std::move(pos);
   if (neg.faces.size() >= 4) out.negative = std::move(neg);
   return out;
+}
+
+// The gradient in space of the P1 interpolant of `v` over the tet.
+Eigen::Vector3d gradient(const Eigen::Matrix<double, 4, 3>& nodes, const std::array<double, 4>& v) {
+  Eigen::Matrix3d a;
+  for (int i = 0; i < 3; ++i) a.row(i) = nodes.row(i + 1) - nodes.row(0);
+  // Cramer's rule by cross products: no LU needed for one 3 × 3 system.
+  const Eigen::Vector3d b(v[1] - v[0], v[2] - v[0], v[3] - v[0]);
+  const Eigen::Vector3d c0 = a.row(1).cross(a.row(2)), c1 = a.row(2).cross(a.row(0)), c2 = a.row(0).cross(a.row(1));
+  const double det = a.row(0).dot(c0);
+  return (b(0) * c0 + b(1) * c1 + b(2) * c2) / det;
 }
 
 }  // namespace
@@ -134,48 +167,56 @@ double piece_volume(const TetPiece& piece) {
   return six_v / 6.0;
 }
 
-std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::span<const TetCutPlane> cuts) {
+std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::span<const TetCutPlane> cuts,
+                                 const TetPieceOptions& options) {
+  const TetFrame frame(nodes, options.node_order);
   // The tet, its faces wound outward whichever way its nodes are ordered.
   TetPiece whole;
-  const Eigen::Vector3d p0 = nodes.row(0).transpose();
-  const double signed_six_v =
-      (nodes.row(1).transpose() - p0).dot((nodes.row(2).transpose() - p0).cross(nodes.row(3).transpose() - p0));
   for (int f = 0; f < 4; ++f) {
-    PieceFace face{PieceFaceKind::TetFace, f, {}};
-    for (int i : TetMesh::kLocalFaces[static_cast<std::size_t>(f)]) face.points.push_back(nodes.row(i).transpose());
+    PieceFace face{PieceFaceKind::TetFace, f, {}, {}};
+    for (int i : TetMesh::kLocalFaces[static_cast<std::size_t>(f)]) {
+      face.points.push_back(nodes.row(i).transpose());
+      face.weights.push_back(Eigen::Vector4d::Unit(i));
+    }
     whole.faces.push_back(std::move(face));
   }
-  if (piece_volume(whole) < 0.0)  // kLocalFaces winds outward for positively oriented tets
-    for (PieceFace& face : whole.faces) std::reverse(face.points.begin(), face.points.end());
+  if (piece_volume(whole) < 0.0) {  // kLocalFaces winds outward for positively oriented tets
+    for (PieceFace& face : whole.faces) {
+      std::reverse(face.points.begin(), face.points.end());
+      std::reverse(face.weights.begin(), face.weights.end());
+    }
+  }
   std::vector<TetPiece> pieces{std::move(whole)};
   if (cuts.empty()) return pieces;
 
   const double size = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff();
-  const double min_volume = 1e-12 * std::abs(signed_six_v) / 6.0;
   const double min_area2 = std::pow(1e-12 * size * size, 2);
-  std::vector<Linear> planes;
-  for (const TetCutPlane& c : cuts) planes.push_back(interpolant(nodes, c.node_values));
-  // Values within this of zero are on the plane: round-off of a value of size |∇f|·size.
-  const auto tolerance = [&](const Linear& f) { return 1e-12 * f.gradient.norm() * size; };
+  double on_plane = options.on_plane;
+  if (!(on_plane > 0.0)) {
+    for (const TetCutPlane& c : cuts)
+      for (double v : c.node_values) on_plane = std::max(on_plane, 1e-12 * std::abs(v));
+  }
 
   for (std::size_t j = 0; j < cuts.size(); ++j) {
     const TetCutPlane& c = cuts[j];
     std::ptrdiff_t clip = -1;
     for (std::size_t i = 0; i < j && c.clipped_by >= 0; ++i)
       if (cuts[i].crack == c.clipped_by) clip = static_cast<std::ptrdiff_t>(i);
+    const SplitPlane crack{&c.node_values, 1.0, gradient(nodes, c.node_values), PieceFaceKind::Crack, c.crack};
     std::vector<TetPiece> next;
     for (const TetPiece& piece : pieces) {
       std::vector<TetPiece> arrival;  // the parts crack c divides
       if (clip < 0) {
         arrival.push_back(piece);
       } else {
-        // Crack c exists on the side clip_side·f_i > 0 of the clipping crack's plane. Where
+        // Crack c exists on the side clip_side·S_i > 0 of the clipping crack's plane. Where
         // that crack does not exist across the piece (its own code 0), the piece is divided
         // along its plane here without a crack: open faces.
-        const Linear& fi = planes[static_cast<std::size_t>(clip)];
-        const Linear oriented{c.clip_side * fi.gradient, fi.origin, c.clip_side * fi.value0};
-        Split s = split(piece, oriented, tolerance(fi), PieceFaceKind::Open, cuts[static_cast<std::size_t>(clip)].crack,
-                        min_area2);
+        const TetCutPlane& ci = cuts[static_cast<std::size_t>(clip)];
+        const double sign = c.clip_side < 0 ? -1.0 : 1.0;
+        const SplitPlane clipping{&ci.node_values, sign, sign * gradient(nodes, ci.node_values), PieceFaceKind::Open,
+                                  ci.crack};
+        Split s = split(piece, frame, clipping, on_plane, min_area2);
         if (s.positive) arrival.push_back(std::move(*s.positive));
         if (s.negative) {
           s.negative->key.push_back('\0');
@@ -183,7 +224,7 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
         }
       }
       for (const TetPiece& part : arrival) {
-        Split s = split(part, planes[j], tolerance(planes[j]), PieceFaceKind::Crack, c.crack, min_area2);
+        Split s = split(part, frame, crack, on_plane, min_area2);
         if (s.positive) {
           s.positive->key.push_back('\1');
           next.push_back(std::move(*s.positive));
@@ -196,7 +237,7 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
     }
     pieces.clear();
     for (TetPiece& p : next)
-      if (piece_volume(p) > min_volume) pieces.push_back(std::move(p));
+      if (piece_volume(p) > 0.0) pieces.push_back(std::move(p));
   }
   return pieces;
 }

@@ -13,6 +13,10 @@
 // Where a clipping crack does not itself exist across a piece (a chain of clips in one tet), the
 // piece is divided along the clipping crack's plane without a crack there: those faces are
 // marked `open`, and the two pieces on either side of one are connected.
+//
+// Seams are exact: every vertex is kept as barycentric weights on the tet's nodes, and values
+// and positions are summed over the nodes in a caller-given order (ascending global node id),
+// so a point on a face two tets share gets the same bits in both, with no welding tolerance.
 #include <Eigen/Core>
 
 #include <array>
@@ -42,6 +46,18 @@ struct PieceFace {
   int index = -1;
   /// A planar convex polygon, counter-clockwise seen from outside the piece.
   std::vector<Eigen::Vector3d> points;
+  /// Each point's barycentric weights on the tet's local nodes (0 exactly off its face).
+  std::vector<Eigen::Vector4d> weights;
+};
+
+struct TetPieceOptions {
+  /// The order in which sums over the tet's local nodes run: ascending global node id, so that
+  /// tets sharing a face compute its points alike.
+  std::array<int, 4> node_order{0, 1, 2, 3};
+  /// |value| at or below this is on a crack's plane, in the units of the node values; one value
+  /// for every tet, so that neighbours classify a shared point alike. 0: 1e-12 of the largest
+  /// |node value| of the tet (for a tet on its own).
+  double on_plane = 0.0;
 };
 
 struct TetPiece {
@@ -52,7 +68,8 @@ struct TetPiece {
 /// The convex pieces of the tet with corner positions `nodes` (rows, local order) cut by `cuts`
 /// (in crack order, as the labeller lists a tet's cuts). Pieces thinner than 1e-12 of the tet's
 /// size are dropped. Without cuts: the tet itself, key "".
-std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::span<const TetCutPlane> cuts);
+std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::span<const TetCutPlane> cuts,
+                                 const TetPieceOptions& options = {});
 
 /// The volume of a closed piece (divergence theorem over its faces).
 double piece_volume(const TetPiece& piece);

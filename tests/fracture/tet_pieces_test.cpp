@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <set>
 #include <random>
 
 namespace fissure::detail {
@@ -190,6 +192,45 @@ TEST(TetPieces, RandomCutsFillTheTetWithClosedConvexPiecesWhoseKeysMatchTheLabel
     ++checked;
   }
   EXPECT_GT(checked, 200);
+}
+
+// Two tets sharing face (A, B, C), numbered differently, cut by the same two cracks (one node
+// value per global node): the points their pieces put on the shared face are the same bits.
+TEST(TetPieces, TetsSharingAFacePutTheSamePointsOnIt) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    // Global nodes 0..4: A, B, C shared; D and E on either side of the face.
+    std::array<Eigen::Vector3d, 5> x{Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                     Eigen::Vector3d(0.2, 0.3, 1), Eigen::Vector3d(0.3, 0.2, -1)};
+    for (auto& p : x) p += 0.1 * Eigen::Vector3d(unit(rng), unit(rng), unit(rng));
+    std::array<std::array<double, 5>, 2> value{};
+    for (auto& crack : value)
+      for (double& v : crack) v = unit(rng);
+    const std::array<std::array<int, 4>, 2> tets{{{3, 0, 1, 2}, {1, 4, 2, 0}}};  // global ids per local node
+    std::array<std::set<std::array<double, 3>>, 2> on_face;
+    for (int t = 0; t < 2; ++t) {
+      Eigen::Matrix<double, 4, 3> nodes;
+      std::vector<TetCutPlane> cuts(2);
+      TetPieceOptions options;
+      options.on_plane = 1e-12;  // one value for both tets
+      for (int i = 0; i < 4; ++i) {
+        nodes.row(i) = x[static_cast<std::size_t>(tets[t][i])].transpose();
+        for (int k = 0; k < 2; ++k) cuts[k].node_values[i] = value[k][static_cast<std::size_t>(tets[t][i])];
+      }
+      cuts[0].crack = 0;
+      cuts[1].crack = 1;
+      std::iota(options.node_order.begin(), options.node_order.end(), 0);
+      std::sort(options.node_order.begin(), options.node_order.end(),
+                [&](int a, int b) { return tets[t][a] < tets[t][b]; });
+      const int apex = t == 0 ? 0 : 1;  // the local node off the shared face
+      for (const auto& piece : tet_pieces(nodes, cuts, options))
+        for (const auto& f : piece.faces)
+          for (std::size_t i = 0; i < f.points.size(); ++i)
+            if (f.weights[i](apex) == 0.0) on_face[t].insert({f.points[i].x(), f.points[i].y(), f.points[i].z()});
+    }
+    ASSERT_EQ(on_face[0], on_face[1]) << "trial " << trial;
+  }
 }
 
 TEST(TetPieces, SliversAndNearlyTouchingCutsStayFiniteAndFillTheTet) {
