@@ -1,5 +1,6 @@
 #include "fissure/fracture/fracture_result.hpp"
 
+#include "tet_cut_index.hpp"
 #include "union_find.hpp"
 
 #include <algorithm>
@@ -14,34 +15,14 @@ namespace {
 constexpr double kProbes[7][3] = {{0.8, 0.1, 0.1},   {0.1, 0.8, 0.1},   {0.1, 0.1, 0.8},   {0.45, 0.45, 0.1},
                                   {0.1, 0.45, 0.45}, {0.45, 0.1, 0.45}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
 
-// A crack's cut of a tet, copied out of its crack so that a tet's cuts lie side by side: the
-// pass visits tets in mesh order, and reaching each cut through its crack's array missed the
-// cache (perf on the 54K slab of bench_fracture: those loads were the labeller's hot spots).
-struct TetCut {
-  int crack;
-  int clipped_by;
-  int clip_side;
-  std::array<double, 4> node_values;
-};
+using TetCut = detail::TetCutPlane;
 
 class PieceLabeller {
 public:
   PieceLabeller(const TetMesh& mesh, const std::vector<CrackSurface>& cracks, int count)
-      : m_mesh(mesh), m_first_cut(static_cast<std::size_t>(mesh.tet_count()) + 1, 0),
+      : m_mesh(mesh), m_cuts(mesh.tet_count(), cracks, count),
         m_pieces(static_cast<std::size_t>(mesh.tet_count())),
         m_sets(static_cast<std::size_t>(mesh.tet_count())) {
-    for (int k = 0; k < count; ++k) {
-      for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) ++m_first_cut[static_cast<std::size_t>(c.tet) + 1];
-    }
-    for (std::size_t t = 1; t < m_first_cut.size(); ++t) m_first_cut[t] += m_first_cut[t - 1];
-    m_cuts.resize(static_cast<std::size_t>(m_first_cut.back()));
-    std::vector<int> next(m_first_cut.begin(), m_first_cut.end() - 1);
-    // In crack order within each tet: the pieces' keys list them so.
-    for (int k = 0; k < count; ++k) {
-      for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) {
-        m_cuts[static_cast<std::size_t>(next[static_cast<std::size_t>(c.tet)]++)] = {k, c.clipped_by, c.clip_side, c.node_values};
-      }
-    }
     // Uncut tets are one piece each, with the tet's index as its id.
   }
 
@@ -160,10 +141,7 @@ private:
     return true;
   }
 
-  std::span<const TetCut> cuts_of(int tet) const {
-    const auto t = static_cast<std::size_t>(tet);
-    return {m_cuts.data() + m_first_cut[t], m_cuts.data() + m_first_cut[t + 1]};
-  }
+  std::span<const TetCut> cuts_of(int tet) const { return m_cuts.of(tet); }
 
   // Keys are a few codes long; std::string's == (and std::equal) called memcmp for them, nearly a
   // third of the labelling time on bench_fracture's 7K tile.
@@ -179,8 +157,7 @@ private:
   }
 
   const TetMesh& m_mesh;
-  std::vector<TetCut> m_cuts;    // every tet's cuts, tet by tet
-  std::vector<int> m_first_cut;  // tet t's cuts are m_cuts[m_first_cut[t], m_first_cut[t + 1])
+  detail::TetCutIndex m_cuts;
   // Per cut tet, its pieces so far: (the side of each of its cuts the piece lies on, as a
   // code per cut in m_cuts order: 1 positive, 2 negative, 0 beyond a clip; the piece's id).
   std::vector<std::vector<std::pair<std::string, int>>> m_pieces;

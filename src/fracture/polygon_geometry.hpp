@@ -10,6 +10,14 @@
 
 namespace fissure::detail {
 
+// x, then y, then z: an order of points that is the body's, not its numbering's (tied tets by
+// their centroids; the end a crossing is computed from, so both faces of a segment agree).
+inline bool position_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  if (a.x() != b.x()) return a.x() < b.x();
+  if (a.y() != b.y()) return a.y() < b.y();
+  return a.z() < b.z();
+}
+
 // Σ (p_i − p_0) × (p_{i+1} − p_0): twice the area times the unit normal.
 inline Eigen::Vector3d polygon_area_vector(const std::vector<Eigen::Vector3d>& p) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();

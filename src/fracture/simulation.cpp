@@ -17,11 +17,11 @@
 #include <deque>
 #include <optional>
 #include <queue>
-#include <tuple>
 
 namespace fissure {
 namespace {
 
+using detail::position_before;
 using Voigt = Eigen::Matrix<double, 6, 1>;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -78,11 +78,6 @@ PlanePrincipal plane_principal(const Voigt& s, const Eigen::Vector3d& n) {
 // resistance. Ordered by time, then by the larger stress-to-resistance ratio (the paper-gaps
 // rule for cracks due at one instant, e.g. at t = 0), then by the tet's centroid (x, then y,
 // then z), so the order is the body's, not its numbering's (ElementOrder tests).
-// x, then y, then z: the order of tied tets by their centroids, distinct for distinct tets.
-bool position_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
-}
-
 struct Event {
   double time;
   double neg_ratio;

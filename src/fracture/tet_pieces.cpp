@@ -1,5 +1,7 @@
 #include "tet_pieces.hpp"
 
+#include "polygon_geometry.hpp"
+
 #include "fissure/mesh/tet_mesh.hpp"
 
 #include <Eigen/Geometry>
@@ -10,18 +12,6 @@
 
 namespace fissure::detail {
 namespace {
-
-bool lexicographically_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  if (a.x() != b.x()) return a.x() < b.x();
-  if (a.y() != b.y()) return a.y() < b.y();
-  return a.z() < b.z();
-}
-
-Eigen::Vector3d area_vector(const std::vector<Eigen::Vector3d>& p) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (std::size_t i = 1; i + 1 < p.size(); ++i) sum += (p[i] - p[0]).cross(p[i + 1] - p[0]);
-  return sum;
-}
 
 // Sums over the tet's nodes in one fixed order (TetPieceOptions::node_order).
 class TetFrame {
@@ -88,7 +78,7 @@ Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plan
       if (side[i] == 0) cap.emplace_back(face.points[i], face.weights[i]);
       if (side[i] * side[j] < 0) {
         std::size_t a = i, b = j;
-        if (lexicographically_before(face.points[j], face.points[i])) std::swap(a, b);
+        if (position_before(face.points[j], face.points[i])) std::swap(a, b);
         const double t = value[a] / (value[a] - value[b]);
         const Eigen::Vector4d w = face.weights[a] + t * (face.weights[b] - face.weights[a]);
         const Eigen::Vector3d x = frame.position(w);
@@ -97,8 +87,8 @@ Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plan
         cap.emplace_back(x, w);
       }
     }
-    if (fp.points.size() >= 3 && area_vector(fp.points).squaredNorm() > min_area2) pos.faces.push_back(std::move(fp));
-    if (fn.points.size() >= 3 && area_vector(fn.points).squaredNorm() > min_area2) neg.faces.push_back(std::move(fn));
+    if (fp.points.size() >= 3 && polygon_area_vector(fp.points).squaredNorm() > min_area2) pos.faces.push_back(std::move(fp));
+    if (fn.points.size() >= 3 && polygon_area_vector(fn.points).squaredNorm() > min_area2) neg.faces.push_back(std::move(fn));
   }
   Split out;
   if (!any_neg) {
@@ -111,7 +101,7 @@ Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plan
   }
   // The section: the cap points without repeats (each crossing is found by both faces of its
   // segment, with the same bits), in order round their mean in the plane.
-  const auto before = [](const auto& a, const auto& b) { return lexicographically_before(a.first, b.first); };
+  const auto before = [](const auto& a, const auto& b) { return position_before(a.first, b.first); };
   std::sort(cap.begin(), cap.end(), before);
   cap.erase(std::unique(cap.begin(), cap.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
             cap.end());
@@ -130,7 +120,7 @@ Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plan
       section.points.push_back(x);
       section.weights.push_back(wt);
     }
-    if (area_vector(section.points).squaredNorm() > min_area2) {
+    if (polygon_area_vector(section.points).squaredNorm() > min_area2) {
       neg.faces.push_back(section);
       std::reverse(section.points.begin(), section.points.end());
       std::reverse(section.weights.begin(), section.weights.end());

@@ -16,7 +16,7 @@
 //
 // Seams are exact: every vertex is kept as barycentric weights on the tet's nodes, and values
 // and positions are summed over the nodes in a caller-given order (ascending global node id),
-// so a point on a face two tets share gets the same bits in both, with no welding tolerance.
+// so a point on a face two tets share gets the same bits in both.
 #include <Eigen/Core>
 
 #include <array>
