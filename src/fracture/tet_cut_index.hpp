@@ -6,6 +6,7 @@
 #include "fissure/fracture/crack_surface.hpp"
 #include "tet_pieces.hpp"
 
+#include <cmath>
 #include <span>
 #include <vector>
 
@@ -13,8 +14,9 @@ namespace fissure::detail {
 
 class TetCutIndex {
 public:
-  /// The cuts of cracks[0 .. count) over a mesh of `tet_count` tets.
-  TetCutIndex(int tet_count, const std::vector<CrackSurface>& cracks, int count)
+  /// The cuts of cracks[0 .. count) over a mesh of `tet_count` tets. Node values nearer zero
+  /// than `min_node_value` are moved out to it, on their own side (fragment_mesh.cpp says why).
+  TetCutIndex(int tet_count, const std::vector<CrackSurface>& cracks, int count, double min_node_value = 0.0)
       : m_first(static_cast<std::size_t>(tet_count) + 1, 0) {
     for (int k = 0; k < count; ++k)
       for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) ++m_first[static_cast<std::size_t>(c.tet) + 1];
@@ -22,9 +24,12 @@ public:
     m_cuts.resize(static_cast<std::size_t>(m_first.back()));
     std::vector<int> next(m_first.begin(), m_first.end() - 1);
     for (int k = 0; k < count; ++k) {
-      for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts)
-        m_cuts[static_cast<std::size_t>(next[static_cast<std::size_t>(c.tet)]++)] = {k, c.node_values, c.clipped_by,
-                                                                                   c.clip_side};
+      for (const CrackCut& c : cracks[static_cast<std::size_t>(k)].cuts) {
+        TetCutPlane& out = m_cuts[static_cast<std::size_t>(next[static_cast<std::size_t>(c.tet)]++)];
+        out = {k, c.node_values, c.clipped_by, c.clip_side};
+        for (double& v : out.node_values)
+          if (std::abs(v) < min_node_value) v = v > 0.0 ? min_node_value : -min_node_value;
+      }
     }
   }
 

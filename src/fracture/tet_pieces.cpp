@@ -180,7 +180,7 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
   if (cuts.empty()) return pieces;
 
   const double size = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff();
-  const double min_area2 = std::pow(1e-12 * size * size, 2);
+  const double min_area2 = std::pow(1e-12 * size * size, 2);  // round-off of a flat face is ~1e-16 size²
   double on_plane = options.on_plane;
   if (!(on_plane > 0.0)) {
     for (const TetCutPlane& c : cuts)

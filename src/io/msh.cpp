@@ -112,9 +112,9 @@ void check_msh_output_path(const fs::path& path) {
 }
 
 void write_msh(const fs::path& path, const TetMesh& mesh, const std::vector<MshView>& views,
-               const MshWriteOptions& options) {
+               const MshWriteOptions& options, const std::vector<NamedSet>& extra_sets) {
   check_msh_output_path(path);
-  write_file_atomically(path, io_detail::encode_msh41(mesh, views, options.binary, path.string()));
+  write_file_atomically(path, io_detail::encode_msh41(mesh, views, options.binary, extra_sets, path.string()));
 }
 
 }  // namespace fissure

@@ -100,9 +100,8 @@ std::vector<int> physical_tags(const Signature& s) {
 
 // Partitions tets, faces and loose nodes into entities by signature, in order of first
 // appearance; tets keep their tags, the other elements are numbered after the largest tet tag.
-Model build_model(const TetMesh& mesh, const std::string& name) {
+Model build_model(const TetMesh& mesh, const std::vector<NamedSet>& sets, const std::string& name) {
   const int n_tets = mesh.tet_count();
-  const auto& sets = mesh.named_sets();
   std::vector<Signature> tet_signature(static_cast<std::size_t>(n_tets));
   std::map<std::array<int, 3>, std::pair<std::array<int, 3>, Signature>> faces;  // sorted key → (winding, signature)
   std::map<int, Signature> loose_nodes;
@@ -325,7 +324,8 @@ void check_tags(const std::vector<std::int64_t>& tags, const char* what, const s
   }
 }
 
-void check_inputs(const TetMesh& mesh, const std::vector<MshView>& views, const std::string& name) {
+void check_inputs(const TetMesh& mesh, const std::vector<MshView>& views, const std::vector<NamedSet>& sets,
+                  const std::string& name) {
   for (const MshView& view : views) {
     const bool nodal = view.kind == MshView::Kind::NodeData;
     const Eigen::Index rows = nodal ? mesh.node_count() : mesh.tet_count();
@@ -346,16 +346,31 @@ void check_inputs(const TetMesh& mesh, const std::vector<MshView>& views, const 
       }
     }
   }
-  for (const NamedSet& set : mesh.named_sets()) check_name(set.name, "set '" + set.name + "'", name);
+  for (const NamedSet& set : sets) {
+    check_name(set.name, "set '" + set.name + "'", name);
+    for (int t : set.tets)
+      if (t < 0 || t >= mesh.tet_count())
+        throw InvalidInput(name + ": set '" + set.name + "' lists tet " + std::to_string(t) + " of " + std::to_string(mesh.tet_count()));
+    for (int v : set.nodes)
+      if (v < 0 || v >= mesh.node_count())
+        throw InvalidInput(name + ": set '" + set.name + "' lists node " + std::to_string(v) + " of " + std::to_string(mesh.node_count()));
+    for (const auto& face : set.faces)
+      for (int v : face)
+        if (v < 0 || v >= mesh.node_count())
+          throw InvalidInput(name + ": set '" + set.name + "' has a face on node " + std::to_string(v) + " of " + std::to_string(mesh.node_count()));
+  }
   check_tags(mesh.tags().nodes, "node", name);
   check_tags(mesh.tags().tets, "tet", name);
 }
 
 }  // namespace
 
-std::string encode_msh41(const TetMesh& mesh, const std::vector<MshView>& views, bool binary, const std::string& name) {
-  check_inputs(mesh, views, name);
-  const Model model = build_model(mesh, name);
+std::string encode_msh41(const TetMesh& mesh, const std::vector<MshView>& views, bool binary,
+                         const std::vector<NamedSet>& extra_sets, const std::string& name) {
+  std::vector<NamedSet> sets = mesh.named_sets();
+  sets.insert(sets.end(), extra_sets.begin(), extra_sets.end());
+  check_inputs(mesh, views, sets, name);
+  const Model model = build_model(mesh, sets, name);
 
   std::string out;
   // About 100 bytes per node and 60 per element in ASCII, 24 + 8 per value in views.

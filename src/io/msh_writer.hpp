@@ -18,6 +18,6 @@ namespace fissure::io_detail {
 /// $NodeData / $ElementData per view. Throws InvalidInput prefixed by `name` for what write_msh
 /// documents (view shapes, non-finite values, names, tags). Same inputs, same bytes.
 std::string encode_msh41(const TetMesh& mesh, const std::vector<MshView>& views, bool binary,
-                         const std::string& name);
+                         const std::vector<NamedSet>& extra_sets, const std::string& name);
 
 }  // namespace fissure::io_detail

@@ -10,8 +10,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include <assimp/Importer.hpp>
+#include <assimp/scene.h>
+
 #include <algorithm>
+#include <array>
+#include <cstring>
+#include <functional>
+#include <map>
 #include <regex>
+#include <set>
 
 namespace fissure {
 namespace {
@@ -66,6 +74,9 @@ TEST_F(FractureCli, WritesStatisticsADrawingAndViewsTheOtherToolsRead) {
   const int geometric = stats.at("fragments").at("count").get<int>();
   EXPECT_NEAR(analysed.at("fragments").at("count").get<int>(), geometric, 0.10 * geometric);
   EXPECT_GE(analysed.at("fragments").at("count").get<int>(), 2);
+  // Each fragment's tets are a 3-D physical group named like the exported meshes.
+  EXPECT_NE(read_file(path("f.msh")).find("\"fragment_000\""), std::string::npos);
+  EXPECT_NE(read_file(path("f.msh")).find("\"fragment_001\""), std::string::npos);
   // gmsh opens the tet mesh with its three views.
   write_file_atomically(path("views.geo"), "Merge \"" + path("f.msh") + "\";\nPrintf(\"views=%g\", PostProcessing.NbViews);\n");
   const auto g = test::run_command("gmsh " + path("views.geo") + " -0 -o " + path("x.geo_unrolled"));
@@ -124,6 +135,93 @@ TEST_F(FractureCli, TilesABowlAndABasinBreakWithNoFlags) {
   }
 }
 
+// Issue 11: the fragments as closed meshes, as assimp (the importer engines and converters use)
+// reads them back: one object per fragment named fragment_NNN, closed once its vertices are
+// merged by position (the UV seams split them, as glTF requires), both materials, the volumes
+// adding up to the tile's, the per-fragment values as glTF node extras.
+TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
+  for (const char* name : {"f.glb", "f.obj"}) {
+    SCOPED_TRACE(name);
+    const auto r = test::run_command(fissure() + " fracture " + mesh() + " -q -o " + path(name) + " --stats " + path("f.json"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto f = nlohmann::json::parse(read_file(path("f.json"))).at("fracture");
+    const int fragments = f.at("fragment_meshes").get<int>();
+    EXPECT_GE(fragments, 2);
+    EXPECT_GT(f.at("seconds").at("fragment_meshing").get<double>(), 0.0);
+    EXPECT_GT(f.at("seconds").at("export").get<double>(), 0.0);
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path(name), 0);
+    ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+    std::map<std::string, std::map<std::pair<int, int>, int>> edges;  // node → directed edge → uses
+    std::set<std::string> materials;
+    double volume = 0.0;
+    const std::function<void(const aiNode*, aiMatrix4x4)> walk = [&](const aiNode* node, aiMatrix4x4 parent) {
+      const aiMatrix4x4 world = parent * node->mTransformation;
+      std::map<std::array<float, 3>, int> ids;
+      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        const aiMesh* m = scene->mMeshes[node->mMeshes[k]];
+        materials.insert(scene->mMaterials[m->mMaterialIndex]->GetName().C_Str());
+        for (unsigned t = 0; t < m->mNumFaces; ++t) {
+          int v[3];
+          aiVector3D x[3];
+          for (int i = 0; i < 3; ++i) {
+            x[i] = world * m->mVertices[m->mFaces[t].mIndices[i]];
+            v[i] = ids.try_emplace({x[i].x, x[i].y, x[i].z}, static_cast<int>(ids.size())).first->second;
+          }
+          volume += static_cast<double>(x[0] * (x[1] ^ x[2])) / 6.0;
+          for (int i = 0; i < 3; ++i) ++edges[node->mName.C_Str()][{v[i], v[(i + 1) % 3]}];
+        }
+      }
+      for (unsigned c = 0; c < node->mNumChildren; ++c) walk(node->mChildren[c], world);
+    };
+    walk(scene->mRootNode, aiMatrix4x4());
+    ASSERT_EQ(static_cast<int>(edges.size()), fragments);
+    EXPECT_TRUE(edges.count("fragment_000"));
+    int open = 0;
+    for (const auto& [node, e] : edges)
+      for (const auto& [edge, uses] : e) {
+        const auto back = e.find({edge.second, edge.first});
+        if (uses != 1 || back == e.end() || back->second != 1) {
+          ++open;
+          ADD_FAILURE() << node << " is open at an edge";
+          break;
+        }
+      }
+    EXPECT_EQ(materials, (std::set<std::string>{"crack", "surface"}));
+    // The tile's 0.4 × 0.4 × 0.03 m³, to float32's resolution of the coordinates (~3e-8 m over
+    // ~1e4 triangles of ≤ 1e-3 m²).
+    EXPECT_NEAR(volume, 0.4 * 0.4 * 0.03, 1e-7);
+  }
+  // Node extras, as a glTF reader sees them.
+  const std::string glb = read_file(path("f.glb"));
+  std::uint32_t json_length = 0;
+  std::memcpy(&json_length, glb.data() + 12, 4);
+  const auto gltf = nlohmann::json::parse(glb.substr(20, json_length));
+  double mass = 0.0;
+  for (const auto& node : gltf.at("nodes")) {
+    const auto& extras = node.at("extras");
+    mass += extras.at("mass_kg").get<double>();
+    EXPECT_EQ(node.at("translation"), extras.at("centre_of_mass_m"));
+    EXPECT_TRUE(extras.at("contacts").is_array());
+  }
+  EXPECT_NEAR(mass, 0.4 * 0.4 * 0.03 * 2400.0, 1e-6);  // ceramic-tile's density, kg/m³
+}
+
+// Same seed, same bytes in every format, at 1 and 2 threads.
+TEST_F(FractureCli, FragmentExportsAreTheSameBytesAtOneAndTwoThreads) {
+  for (const char* name : {"d.glb", "d.gltf", "d.obj", "d.ply"}) {
+    std::string bytes[2];
+    for (int threads = 1; threads <= 2; ++threads) {
+      const auto r = test::run_command(fissure() + " fracture " + mesh() + " -q --threads " + std::to_string(threads) +
+                                       " -o " + path(name));
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+      bytes[threads - 1] = read_file(path(name));
+    }
+    EXPECT_EQ(bytes[0], bytes[1]) << name;
+    EXPECT_GT(bytes[0].size(), 1000u) << name;
+  }
+}
+
 TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   const std::string run = fissure() + " fracture " + mesh();
   const std::string out = " --stats " + path("never.json");
@@ -134,6 +232,11 @@ TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   expect_failure(test::run_command(run + " --load ball:5,5,5,0.01=0,0,-100" + out), 3, "ball:5,5,5,0.01");
   expect_failure(test::run_command(run + " --up w" + out), 3, "--up w");
   expect_failure(test::run_command(run + " --stats /nonexistent-dir/s.json"), 4, "/nonexistent-dir");
+  expect_failure(test::run_command(run + " -o " + path("f.fbx") + out), 4, "the output must end in .glb, .gltf, .obj or .ply");
+  expect_failure(test::run_command(run + " -o /nonexistent-dir/f.glb" + out), 4, "/nonexistent-dir");
+  fs::create_directory(path("folder.glb"));
+  expect_failure(test::run_command(run + " -o " + path("folder.glb") + out), 4, path("folder.glb"));
+  expect_failure(test::run_command(run + " -o -" + out), 3, "only --stats may be -");
   // An open surface: one triangle.
   write_file_atomically(path("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   expect_failure(test::run_command(fissure() + " fracture " + path("open.obj") + out), 3, path("open.obj"));

@@ -1,0 +1,72 @@
+#pragma once
+/// Writes a scene of separate parts (the fragments of a fractured body) for the programs artists
+/// open them in: binary glTF (.glb), glTF with its buffer embedded (.gltf), Wavefront OBJ with a
+/// .mtl beside it, and PLY. Fissure writes these itself: assimp 5.2.5's glTF2 exporter drops
+/// node extras, its OBJ exporter splits a part with two materials into two open groups, and its
+/// binary FBX is unreadable by assimp and Blender alike (assimp issue 4686), so FBX is left out.
+///
+/// What each format keeps:
+/// - GLB, glTF: one node per part (its name, its translation, its extras object); one mesh per
+///   part with one primitive per material it uses, the primitives sharing one vertex array, so
+///   a closed part stays one closed surface; positions and UVs as float32, indices uint32; no
+///   normals (clients shade flat, which a fracture surface is).
+/// - OBJ: one `o NAME` per part, world positions, `vt` UVs, `usemtl` switching per material
+///   inside the object, and `mtllib` naming NAME.mtl, written beside it. Extras become comments.
+/// - PLY: one binary little-endian mesh of world positions, with per-vertex `part` (the part's
+///   index) and u, v, and per-face `material` (index into the scene's materials).
+/// Every file is written atomically (base/atomic_file.hpp); the same scene gives the same bytes.
+
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+struct ExportPart {
+  std::string name;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< the node's origin, m
+  Eigen::MatrixX3d vertices;   ///< relative to `translation`, m
+  Eigen::MatrixX2d uvs;        ///< one per vertex
+  Eigen::MatrixX3i triangles;  ///< counter-clockwise seen from outside
+  std::vector<int> triangle_material;  ///< per triangle, an index into ExportScene::materials
+  std::string extras_json = "{}";      ///< a JSON object: glTF node extras, OBJ comments
+};
+
+struct ExportMaterial {
+  std::string name;
+  Eigen::Vector3d colour = Eigen::Vector3d::Constant(0.8);  ///< linear RGB base colour
+};
+
+struct ExportScene {
+  std::vector<ExportMaterial> materials;
+  std::vector<ExportPart> parts;
+};
+
+enum class SceneFormat { Glb, Gltf, Obj, Ply };
+
+/// The formats write_scene() writes, for messages and help texts.
+inline constexpr const char* kSceneFormats = ".glb, .gltf, .obj or .ply";
+
+/// The format of `path` by its extension (case-insensitive), or nothing.
+std::optional<SceneFormat> scene_format_of(const std::filesystem::path& path);
+
+/// Throws IoError naming the file when `path` has no scene extension or could not be written
+/// (check_output_path), for commands to call before a long computation.
+void check_scene_output_path(const std::filesystem::path& path);
+
+/// The bytes of `scene` in `format`. For OBJ, the .obj file's; `mtl_name` is the name its
+/// `mtllib` line gives. Throws InvalidInput naming the part and triangle when a triangle indexes
+/// a vertex or material that does not exist, or a value is not finite.
+std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name = {});
+
+/// The .mtl file of an OBJ export.
+std::string encode_obj_materials(const ExportScene& scene);
+
+/// Writes `scene` to `path` in the format of its extension (and, for OBJ, the .mtl beside it).
+/// Throws IoError naming the file when it cannot be written; nothing is left half-written.
+void write_scene(const std::filesystem::path& path, const ExportScene& scene);
+
+}  // namespace fissure

@@ -1,0 +1,65 @@
+// Wavefront OBJ and MTL: one object per part, its materials switched with usemtl inside it, so
+// a part with crack and surface faces is one closed object in Blender, not two open groups.
+#include "scene_encoders.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <map>
+#include <vector>
+
+namespace fissure::io_detail {
+
+std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
+  std::string out = "# Fissure: " + std::to_string(scene.parts.size()) + " parts, metres\n";
+  if (!mtl_name.empty()) out += "mtllib " + mtl_name + "\n";
+  // OBJ indexes positions and UVs apart: each position is written once, so a part whose
+  // vertices were split at UV seams reads back as one welded, closed surface with no merging.
+  long long position_base = 0, uv_base = 0;  // OBJ indices are 1-based and global
+  for (const ExportPart& part : scene.parts) {
+    out += "o " + part.name + "\n";
+    // Extras as comments, one line: OBJ has no place for them.
+    out += "# extras " + nlohmann::json::parse(part.extras_json).dump() + "\n";
+    std::map<std::array<double, 3>, long long> position_index;
+    std::vector<long long> position_of(static_cast<std::size_t>(part.vertices.rows()));
+    for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {
+      const std::array<double, 3> x = {part.vertices(v, 0) + part.translation(0), part.vertices(v, 1) + part.translation(1),
+                                       part.vertices(v, 2) + part.translation(2)};
+      const auto [it, inserted] = position_index.try_emplace(x, static_cast<long long>(position_index.size()));
+      position_of[static_cast<std::size_t>(v)] = it->second;
+      if (inserted) out += "v " + exact_number(x[0]) + " " + exact_number(x[1]) + " " + exact_number(x[2]) + "\n";
+    }
+    for (Eigen::Index v = 0; v < part.uvs.rows(); ++v)
+      out += "vt " + exact_number(part.uvs(v, 0)) + " " + exact_number(part.uvs(v, 1)) + "\n";
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+      bool used = false;
+      for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) {
+        if (part.triangle_material[static_cast<std::size_t>(t)] != static_cast<int>(m)) continue;
+        if (!used) out += "usemtl " + scene.materials[m].name + "\n";
+        used = true;
+        out += "f";
+        for (int i = 0; i < 3; ++i) {
+          const int v = part.triangles(t, i);
+          out += " " + std::to_string(position_base + position_of[static_cast<std::size_t>(v)] + 1) + "/" +
+                 std::to_string(uv_base + v + 1);
+        }
+        out += "\n";
+      }
+    }
+    position_base += static_cast<long long>(position_index.size());
+    uv_base += part.uvs.rows();
+  }
+  return out;
+}
+
+std::string encode_mtl(const ExportScene& scene) {
+  std::string out = "# Fissure\n";
+  for (const ExportMaterial& m : scene.materials) {
+    out += "newmtl " + m.name + "\n";
+    out += "Kd " + exact_number(m.colour.x()) + " " + exact_number(m.colour.y()) + " " + exact_number(m.colour.z()) + "\n";
+    out += "Ka 0 0 0\nKs 0 0 0\nd 1\nillum 1\n";
+  }
+  return out;
+}
+
+}  // namespace fissure::io_detail

@@ -1,0 +1,56 @@
+// PLY holds one mesh: every part's triangles in one binary file, each vertex tagged with its
+// part's index and each face with its material, so a reader can split them again.
+#include "scene_encoders.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+
+namespace fissure::io_detail {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "binary_little_endian is written as the host's bytes");
+
+template <class T>
+void put(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  out.append(bytes, sizeof(T));
+}
+
+}  // namespace
+
+std::string encode_ply(const ExportScene& scene) {
+  std::size_t vertices = 0, faces = 0;
+  for (const ExportPart& p : scene.parts) {
+    vertices += static_cast<std::size_t>(p.vertices.rows());
+    faces += static_cast<std::size_t>(p.triangles.rows());
+  }
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment Fissure: metres; part = index of the fragment\n";
+  for (std::size_t m = 0; m < scene.materials.size(); ++m)
+    out += "comment material " + std::to_string(m) + " " + scene.materials[m].name + "\n";
+  out += "element vertex " + std::to_string(vertices) +
+         "\nproperty float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\nproperty int part\n";
+  out += "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nproperty uchar material\nend_header\n";
+  for (std::size_t k = 0; k < scene.parts.size(); ++k) {
+    const ExportPart& p = scene.parts[k];
+    for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) {
+      for (int i = 0; i < 3; ++i) put(out, static_cast<float>(p.vertices(v, i) + p.translation(i)));
+      put(out, static_cast<float>(p.uvs(v, 0)));
+      put(out, static_cast<float>(p.uvs(v, 1)));
+      put(out, static_cast<std::int32_t>(k));
+    }
+  }
+  std::int64_t base = 0;
+  for (const ExportPart& p : scene.parts) {
+    for (Eigen::Index t = 0; t < p.triangles.rows(); ++t) {
+      put(out, static_cast<std::uint8_t>(3));
+      for (int i = 0; i < 3; ++i) put(out, static_cast<std::int32_t>(base + p.triangles(t, i)));
+      put(out, static_cast<std::uint8_t>(p.triangle_material[static_cast<std::size_t>(t)]));
+    }
+    base += p.vertices.rows();
+  }
+  return out;
+}
+
+}  // namespace fissure::io_detail

@@ -1,0 +1,18 @@
+#pragma once
+// The encoders behind write_scene() (include/fissure/io/scene_export.hpp), one file each; the
+// scene has been checked (every index in range, every value finite) before they run.
+#include "fissure/io/scene_export.hpp"
+
+#include <string>
+
+namespace fissure::io_detail {
+
+std::string encode_gltf(const ExportScene& scene, bool binary);
+std::string encode_obj(const ExportScene& scene, const std::string& mtl_name);
+std::string encode_mtl(const ExportScene& scene);
+std::string encode_ply(const ExportScene& scene);
+
+// Shortest text that reads back to the same double (std::to_chars), for the text formats.
+std::string exact_number(double value);
+
+}  // namespace fissure::io_detail

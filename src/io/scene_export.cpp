@@ -1,0 +1,112 @@
+#include "fissure/io/scene_export.hpp"
+
+#include "scene_encoders.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace fissure {
+namespace fs = std::filesystem;
+
+namespace {
+
+void check_scene(const ExportScene& scene) {
+  const int materials = static_cast<int>(scene.materials.size());
+  for (std::size_t p = 0; p < scene.parts.size(); ++p) {
+    const ExportPart& part = scene.parts[p];
+    const std::string who = "part " + std::to_string(p + 1) + " (" + part.name + ")";
+    if (part.uvs.rows() != part.vertices.rows())
+      throw InvalidInput(who + ": " + std::to_string(part.uvs.rows()) + " UVs for " +
+                         std::to_string(part.vertices.rows()) + " vertices");
+    if (static_cast<Eigen::Index>(part.triangle_material.size()) != part.triangles.rows())
+      throw InvalidInput(who + ": " + std::to_string(part.triangle_material.size()) + " triangle materials for " +
+                         std::to_string(part.triangles.rows()) + " triangles");
+    if (!part.vertices.allFinite() || !part.uvs.allFinite() || !part.translation.allFinite())
+      throw InvalidInput(who + ": a position or UV is not finite");
+    for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) {
+      for (int i = 0; i < 3; ++i)
+        if (part.triangles(t, i) < 0 || part.triangles(t, i) >= part.vertices.rows())
+          throw InvalidInput(who + ": triangle " + std::to_string(t + 1) + " indexes vertex " +
+                             std::to_string(part.triangles(t, i) + 1) + " of " + std::to_string(part.vertices.rows()));
+      const int m = part.triangle_material[static_cast<std::size_t>(t)];
+      if (m < 0 || m >= materials)
+        throw InvalidInput(who + ": triangle " + std::to_string(t + 1) + " has material " + std::to_string(m) +
+                           " of " + std::to_string(materials));
+    }
+    const auto extras = nlohmann::json::parse(part.extras_json, nullptr, false);
+    if (extras.is_discarded() || !extras.is_object()) throw InvalidInput(who + ": its extras are not a JSON object");
+  }
+}
+
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+namespace io_detail {
+
+std::string exact_number(double value) {
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, value);
+  return error == std::errc() ? std::string(text, end) : std::string("0");
+}
+
+}  // namespace io_detail
+
+std::optional<SceneFormat> scene_format_of(const fs::path& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".glb") return SceneFormat::Glb;
+  if (ext == ".gltf") return SceneFormat::Gltf;
+  if (ext == ".obj") return SceneFormat::Obj;
+  if (ext == ".ply") return SceneFormat::Ply;
+  return std::nullopt;
+}
+
+// The .mtl beside an OBJ: same name, extension .mtl.
+static fs::path mtl_path_of(const fs::path& obj) { return fs::path(obj).replace_extension(".mtl"); }
+
+void check_scene_output_path(const fs::path& path) {
+  // Before the path's own checks: `-o x.stl` must not be written as something else under that name.
+  if (!scene_format_of(path))
+    throw IoError(path.string() + ": the output must end in " + std::string(kSceneFormats));
+  check_output_path(path);
+  if (scene_format_of(path) == SceneFormat::Obj) check_output_path(mtl_path_of(path));
+}
+
+std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name) {
+  check_scene(scene);
+  switch (format) {
+    case SceneFormat::Glb: return io_detail::encode_gltf(scene, true);
+    case SceneFormat::Gltf: return io_detail::encode_gltf(scene, false);
+    case SceneFormat::Obj: return io_detail::encode_obj(scene, mtl_name);
+    case SceneFormat::Ply: return io_detail::encode_ply(scene);
+  }
+  return {};
+}
+
+std::string encode_obj_materials(const ExportScene& scene) { return io_detail::encode_mtl(scene); }
+
+void write_scene(const fs::path& path, const ExportScene& scene) {
+  check_scene_output_path(path);
+  const SceneFormat format = *scene_format_of(path);
+  if (format == SceneFormat::Obj) {
+    const fs::path mtl = mtl_path_of(path);
+    const std::string obj = encode_scene(scene, format, mtl.filename().string());
+    // The materials first: an .obj is never left naming a .mtl that was not written.
+    write_file_atomically(mtl, encode_obj_materials(scene));
+    write_file_atomically(path, obj);
+    return;
+  }
+  write_file_atomically(path, encode_scene(scene, format));
+}
+
+}  // namespace fissure

@@ -1,0 +1,216 @@
+// The scene writers (include/fissure/io/scene_export.hpp) read back by assimp, the library most
+// engines and converters use: one node per part with its name and origin, closed parts, both
+// materials, UVs, glTF extras; the same bytes every time; bad scenes and paths refused.
+#include "fissure/io/scene_export.hpp"
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+
+#include "test_support.hpp"
+
+#include <Eigen/Geometry>
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <map>
+
+namespace fissure {
+namespace {
+namespace fs = std::filesystem;
+
+// A unit cube at `origin` as a part: 24 vertices (one UV chart per face), the top face in
+// material 1 ("crack"), the others in material 0.
+ExportPart cube(const std::string& name, const Eigen::Vector3d& origin) {
+  ExportPart p;
+  p.name = name;
+  p.translation = origin;
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  p.vertices.resize(24, 3);
+  p.uvs.resize(24, 2);
+  p.triangles.resize(12, 3);
+  for (int f = 0; f < 6; ++f) {
+    for (int i = 0; i < 4; ++i) {
+      const int c = faces[f][i];
+      p.vertices.row(4 * f + i) = Eigen::RowVector3d((c & 1) - 0.5, (c >> 1 & 1) - 0.5, (c >> 2 & 1) - 0.5);
+      p.uvs.row(4 * f + i) = Eigen::RowVector2d(i == 1 || i == 2, i >= 2);
+    }
+    p.triangles.row(2 * f) = Eigen::RowVector3i(4 * f, 4 * f + 1, 4 * f + 2);
+    p.triangles.row(2 * f + 1) = Eigen::RowVector3i(4 * f, 4 * f + 2, 4 * f + 3);
+    p.triangle_material.push_back(f == 5 ? 1 : 0);
+    p.triangle_material.push_back(f == 5 ? 1 : 0);
+  }
+  p.extras_json = R"({"volume_m3":1,"name":")" + name + "\"}";
+  return p;
+}
+
+ExportScene two_cubes() {
+  ExportScene s;
+  s.materials = {{"surface", Eigen::Vector3d(0.6, 0.6, 0.6)}, {"crack", Eigen::Vector3d(0.3, 0.3, 0.3)}};
+  s.parts = {cube("fragment_000", Eigen::Vector3d(0, 0, 0)), cube("fragment_001", Eigen::Vector3d(3, 0, 0.5))};
+  return s;
+}
+
+// Per node: its meshes' triangles with vertices merged by position (world coordinates), then
+// every edge used once each way (closed and consistently wound).
+struct NodeReport {
+  int triangles = 0;
+  bool closed = true;
+  double volume = 0.0;
+  std::vector<std::string> materials;
+  bool has_uvs = true;
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();
+};
+
+std::map<std::string, NodeReport> read_back(const fs::path& file) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(file.string(), 0);
+  EXPECT_NE(scene, nullptr) << file << ": " << importer.GetErrorString();
+  std::map<std::string, NodeReport> out;
+  if (!scene) return out;
+  const std::function<void(const aiNode*, aiMatrix4x4)> walk = [&](const aiNode* node, aiMatrix4x4 parent) {
+    const aiMatrix4x4 world = parent * node->mTransformation;
+    if (node->mNumMeshes > 0) {
+      NodeReport& r = out[node->mName.C_Str()];
+      r.translation = Eigen::Vector3d(world.a4, world.b4, world.c4);
+      std::map<std::array<float, 3>, int> ids;
+      std::map<std::pair<int, int>, int> edges;
+      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        const aiMesh* m = scene->mMeshes[node->mMeshes[k]];
+        r.materials.push_back(scene->mMaterials[m->mMaterialIndex]->GetName().C_Str());
+        r.has_uvs = r.has_uvs && m->HasTextureCoords(0);
+        for (unsigned f = 0; f < m->mNumFaces; ++f) {
+          ++r.triangles;
+          int v[3];
+          Eigen::Vector3d p[3];
+          for (int i = 0; i < 3; ++i) {
+            aiVector3D x = world * m->mVertices[m->mFaces[f].mIndices[i]];
+            v[i] = ids.try_emplace({x.x, x.y, x.z}, static_cast<int>(ids.size())).first->second;
+            p[i] = Eigen::Vector3d(x.x, x.y, x.z);
+          }
+          r.volume += p[0].dot(p[1].cross(p[2])) / 6.0;
+          for (int i = 0; i < 3; ++i) ++edges[{v[i], v[(i + 1) % 3]}];
+        }
+      }
+      for (const auto& [e, n] : edges)
+        if (n != 1 || !edges.count({e.second, e.first}) || edges.at({e.second, e.first}) != 1) r.closed = false;
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) walk(node->mChildren[c], world);
+  };
+  walk(scene->mRootNode, aiMatrix4x4());
+  return out;
+}
+
+class SceneExport : public ::testing::Test {
+protected:
+  void SetUp() override { dir = test::fresh_temp_dir("scene-export"); }
+  fs::path dir;
+};
+
+TEST_F(SceneExport, GlbGltfAndObjReadBackByAssimpAsOneClosedObjectPerPart) {
+  for (const char* name : {"cubes.glb", "cubes.gltf", "cubes.obj"}) {
+    SCOPED_TRACE(name);
+    write_scene(dir / name, two_cubes());
+    const auto nodes = read_back(dir / name);
+    ASSERT_EQ(nodes.size(), 2u);
+    for (const char* part : {"fragment_000", "fragment_001"}) {
+      ASSERT_TRUE(nodes.count(part)) << part;
+      const NodeReport& r = nodes.at(part);
+      EXPECT_EQ(r.triangles, 12);
+      EXPECT_TRUE(r.closed);
+      EXPECT_NEAR(r.volume, 1.0, 1e-6);  // float32 of small integers and halves: exact
+      EXPECT_TRUE(r.has_uvs);
+      std::vector<std::string> materials = r.materials;
+      std::sort(materials.begin(), materials.end());
+      EXPECT_EQ(materials, (std::vector<std::string>{"crack", "surface"}));
+    }
+    // glTF keeps the origin as the node's translation; OBJ has none (world positions).
+    if (std::string(name) != "cubes.obj") EXPECT_TRUE(nodes.at("fragment_001").translation.isApprox(Eigen::Vector3d(3, 0, 0.5)));
+  }
+  EXPECT_TRUE(fs::exists(dir / "cubes.mtl"));
+  EXPECT_NE(read_file(dir / "cubes.obj").find("mtllib cubes.mtl"), std::string::npos);
+}
+
+// The GLB's own structure, read as the glTF 2.0 spec lays it out: header, JSON chunk, BIN
+// chunk, 4-byte alignment, node extras, accessor bounds.
+TEST_F(SceneExport, GlbFollowsTheSpecLayoutAndKeepsNodeExtras) {
+  const std::string bytes = encode_scene(two_cubes(), SceneFormat::Glb);
+  ASSERT_GE(bytes.size(), 28u);
+  std::uint32_t header[5];
+  std::memcpy(header, bytes.data(), sizeof header);
+  EXPECT_EQ(header[0], 0x46546C67u);
+  EXPECT_EQ(header[1], 2u);
+  EXPECT_EQ(header[2], bytes.size());
+  EXPECT_EQ(header[3] % 4, 0u);
+  EXPECT_EQ(header[4], 0x4E4F534Au);
+  const auto gltf = nlohmann::json::parse(bytes.substr(20, header[3]));
+  std::uint32_t bin[2];
+  std::memcpy(bin, bytes.data() + 20 + header[3], sizeof bin);
+  EXPECT_EQ(bin[1], 0x004E4942u);
+  EXPECT_EQ(bin[0], gltf.at("buffers").at(0).at("byteLength").get<std::uint32_t>());
+  EXPECT_EQ(20 + header[3] + 8 + bin[0], bytes.size());
+  ASSERT_EQ(gltf.at("nodes").size(), 2u);
+  EXPECT_EQ(gltf.at("nodes").at(1).at("extras").at("name"), "fragment_001");
+  EXPECT_EQ(gltf.at("nodes").at(1).at("extras").at("volume_m3"), 1);
+  for (const auto& view : gltf.at("bufferViews")) EXPECT_EQ(view.at("byteOffset").get<int>() % 4, 0);
+  const auto& position = gltf.at("accessors").at(gltf.at("meshes").at(0).at("primitives").at(0).at("attributes").at("POSITION").get<int>());
+  EXPECT_EQ(position.at("min"), nlohmann::json::array({-0.5, -0.5, -0.5}));
+  EXPECT_EQ(position.at("max"), nlohmann::json::array({0.5, 0.5, 0.5}));
+  // The two primitives of a part share its one vertex array: a closed part stays closed.
+  const auto& primitives = gltf.at("meshes").at(0).at("primitives");
+  ASSERT_EQ(primitives.size(), 2u);
+  EXPECT_EQ(primitives.at(0).at("attributes"), primitives.at(1).at("attributes"));
+}
+
+TEST_F(SceneExport, PlyHoldsEveryPartTaggedByIndex) {
+  write_scene(dir / "cubes.ply", two_cubes());
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile((dir / "cubes.ply").string(), 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  unsigned faces = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) faces += scene->mMeshes[m]->mNumFaces;
+  EXPECT_EQ(faces, 24u);
+  const std::string text = read_file(dir / "cubes.ply");
+  EXPECT_NE(text.find("property int part\n"), std::string::npos);
+  EXPECT_NE(text.find("comment material 1 crack\n"), std::string::npos);
+}
+
+TEST_F(SceneExport, SameSceneSameBytes) {
+  for (SceneFormat f : {SceneFormat::Glb, SceneFormat::Gltf, SceneFormat::Obj, SceneFormat::Ply})
+    EXPECT_EQ(encode_scene(two_cubes(), f, "x.mtl"), encode_scene(two_cubes(), f, "x.mtl"));
+}
+
+TEST_F(SceneExport, BadScenesAndPathsAreRefusedNamingTheCulprit) {
+  ExportScene s = two_cubes();
+  s.parts[1].triangles(3, 1) = 99;
+  try {
+    write_scene(dir / "bad.glb", s);
+    ADD_FAILURE() << "accepted a triangle past the vertices";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("part 2 (fragment_001): triangle 4 indexes vertex 100 of 24"), std::string::npos) << e.what();
+  }
+  s = two_cubes();
+  s.parts[0].vertices(0, 0) = std::nan("");
+  EXPECT_THROW(write_scene(dir / "bad.glb", s), InvalidInput);
+  s = two_cubes();
+  s.parts[0].extras_json = "[1]";
+  EXPECT_THROW(write_scene(dir / "bad.glb", s), InvalidInput);
+  EXPECT_FALSE(fs::exists(dir / "bad.glb"));
+  for (const fs::path& p : {dir / "x.fbx", dir / "x", dir / "missing" / "x.glb"}) {
+    try {
+      write_scene(p, two_cubes());
+      ADD_FAILURE() << p;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+    }
+  }
+  fs::create_directory(dir / "folder.glb");
+  EXPECT_THROW(write_scene(dir / "folder.glb", two_cubes()), IoError);
+  EXPECT_TRUE(fs::is_directory(dir / "folder.glb"));
+}
+
+}  // namespace
+}  // namespace fissure
