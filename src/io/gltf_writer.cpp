@@ -66,10 +66,6 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
-void append_u32(std::string& out, std::uint32_t v) {
-  for (int i = 0; i < 4; ++i) out += static_cast<char>(v >> (8 * i) & 0xff);  // little-endian
-}
-
 }  // namespace
 
 std::string encode_gltf(const ExportScene& scene, bool binary) {
@@ -148,15 +144,15 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
   std::string out;
   const std::size_t total = 12 + 8 + json.size() + (bytes.empty() ? 0 : 8 + bytes.size());
   if (total > 0xffffffffu) throw InvalidInput("the scene needs " + std::to_string(total) + " bytes, more than a GLB holds (4 GiB)");
-  append_u32(out, 0x46546C67u);  // "glTF"
-  append_u32(out, 2);
-  append_u32(out, static_cast<std::uint32_t>(total));
-  append_u32(out, static_cast<std::uint32_t>(json.size()));
-  append_u32(out, 0x4E4F534Au);  // "JSON"
+  append_bytes<std::uint32_t>(out, 0x46546C67u);  // "glTF"
+  append_bytes<std::uint32_t>(out, 2);
+  append_bytes<std::uint32_t>(out, static_cast<std::uint32_t>(total));
+  append_bytes<std::uint32_t>(out, static_cast<std::uint32_t>(json.size()));
+  append_bytes<std::uint32_t>(out, 0x4E4F534Au);  // "JSON"
   out += json;
   if (!bytes.empty()) {
-    append_u32(out, static_cast<std::uint32_t>(bytes.size()));
-    append_u32(out, 0x004E4942u);  // "BIN\0"
+    append_bytes<std::uint32_t>(out, static_cast<std::uint32_t>(bytes.size()));
+    append_bytes<std::uint32_t>(out, 0x004E4942u);  // "BIN\0"
     out += bytes;
   }
   return out;

@@ -348,16 +348,15 @@ void check_inputs(const TetMesh& mesh, const std::vector<MshView>& views, const 
   }
   for (const NamedSet& set : sets) {
     check_name(set.name, "set '" + set.name + "'", name);
-    for (int t : set.tets)
-      if (t < 0 || t >= mesh.tet_count())
-        throw InvalidInput(name + ": set '" + set.name + "' lists tet " + std::to_string(t) + " of " + std::to_string(mesh.tet_count()));
-    for (int v : set.nodes)
-      if (v < 0 || v >= mesh.node_count())
-        throw InvalidInput(name + ": set '" + set.name + "' lists node " + std::to_string(v) + " of " + std::to_string(mesh.node_count()));
+    const auto check_index = [&](int i, int count, const char* what) {
+      if (i < 0 || i >= count)
+        throw InvalidInput(name + ": set '" + set.name + "' " + what + " " + std::to_string(i) + " of " +
+                           std::to_string(count));
+    };
+    for (int t : set.tets) check_index(t, mesh.tet_count(), "lists tet");
+    for (int v : set.nodes) check_index(v, mesh.node_count(), "lists node");
     for (const auto& face : set.faces)
-      for (int v : face)
-        if (v < 0 || v >= mesh.node_count())
-          throw InvalidInput(name + ": set '" + set.name + "' has a face on node " + std::to_string(v) + " of " + std::to_string(mesh.node_count()));
+      for (int v : face) check_index(v, mesh.node_count(), "has a face on node");
   }
   check_tags(mesh.tags().nodes, "node", name);
   check_tags(mesh.tags().tets, "tet", name);

@@ -2,23 +2,9 @@
 // part's index and each face with its material, so a reader can split them again.
 #include "scene_encoders.hpp"
 
-#include <bit>
 #include <cstdint>
-#include <cstring>
 
 namespace fissure::io_detail {
-namespace {
-
-static_assert(std::endian::native == std::endian::little, "binary_little_endian is written as the host's bytes");
-
-template <class T>
-void put(std::string& out, T value) {
-  char bytes[sizeof(T)];
-  std::memcpy(bytes, &value, sizeof(T));
-  out.append(bytes, sizeof(T));
-}
-
-}  // namespace
 
 std::string encode_ply(const ExportScene& scene) {
   std::size_t vertices = 0, faces = 0;
@@ -35,18 +21,18 @@ std::string encode_ply(const ExportScene& scene) {
   for (std::size_t k = 0; k < scene.parts.size(); ++k) {
     const ExportPart& p = scene.parts[k];
     for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) {
-      for (int i = 0; i < 3; ++i) put(out, static_cast<float>(p.vertices(v, i) + p.translation(i)));
-      put(out, static_cast<float>(p.uvs(v, 0)));
-      put(out, static_cast<float>(p.uvs(v, 1)));
-      put(out, static_cast<std::int32_t>(k));
+      for (int i = 0; i < 3; ++i) append_bytes(out, static_cast<float>(p.vertices(v, i) + p.translation(i)));
+      append_bytes(out, static_cast<float>(p.uvs(v, 0)));
+      append_bytes(out, static_cast<float>(p.uvs(v, 1)));
+      append_bytes(out, static_cast<std::int32_t>(k));
     }
   }
   std::int64_t base = 0;
   for (const ExportPart& p : scene.parts) {
     for (Eigen::Index t = 0; t < p.triangles.rows(); ++t) {
-      put(out, static_cast<std::uint8_t>(3));
-      for (int i = 0; i < 3; ++i) put(out, static_cast<std::int32_t>(base + p.triangles(t, i)));
-      put(out, static_cast<std::uint8_t>(p.triangle_material[static_cast<std::size_t>(t)]));
+      append_bytes(out, static_cast<std::uint8_t>(3));
+      for (int i = 0; i < 3; ++i) append_bytes(out, static_cast<std::int32_t>(base + p.triangles(t, i)));
+      append_bytes(out, static_cast<std::uint8_t>(p.triangle_material[static_cast<std::size_t>(t)]));
     }
     base += p.vertices.rows();
   }

@@ -1,5 +1,6 @@
 #include "fissure/io/scene_export.hpp"
 
+#include "byte_cursor.hpp"
 #include "scene_encoders.hpp"
 
 #include "fissure/base/atomic_file.hpp"
@@ -7,7 +8,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -44,12 +44,6 @@ void check_scene(const ExportScene& scene) {
   }
 }
 
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 }  // namespace
 
 namespace io_detail {
@@ -63,7 +57,7 @@ std::string exact_number(double value) {
 }  // namespace io_detail
 
 std::optional<SceneFormat> scene_format_of(const fs::path& path) {
-  const std::string ext = lower_extension(path);
+  const std::string ext = io_detail::lower_ascii(path.extension().string());
   if (ext == ".glb") return SceneFormat::Glb;
   if (ext == ".gltf") return SceneFormat::Gltf;
   if (ext == ".obj") return SceneFormat::Obj;

@@ -53,8 +53,9 @@ void check_msh_output_path(const std::filesystem::path& path);
 /// The whole file is built in memory and committed with write_file_atomically: every write is
 /// checked, and a failed write (full disk, file size limit) leaves the previous file intact.
 /// `extra_sets` are written after the mesh's own named sets and checked like them (fracture
-/// writes each fragment's tets as a 3-D group "fragment_NNN"). Same inputs → same bytes. Throws IoError naming the path when it does not end in
-/// .msh (see check_msh_output_path) or cannot be written; InvalidInput naming the view or set
+/// writes each fragment's tets as a 3-D group "fragment_NNN"). Same inputs → same bytes.
+/// Throws IoError naming the path when it does not end in .msh (see check_msh_output_path) or
+/// cannot be written; InvalidInput naming the view or set
 /// for a view with the wrong row count, component count or a non-finite value, a name holding
 /// a double quote or a control character, or tags that are not unique positive 31-bit integers.
 /// O(#tets log #tets); holds the whole file in memory (about 100 bytes per tet, plus up to 25
