@@ -23,7 +23,7 @@
 namespace fissure {
 namespace {
 
-using Polygon = std::vector<Eigen::Vector3d>;
+using Polygon = detail::SmallVector<Eigen::Vector3d, 8>;  // the type of PieceFace::points
 using detail::PieceFace;
 using detail::PieceFaceKind;
 using detail::TetPiece;
@@ -43,8 +43,8 @@ Polygon clip_left(const Polygon& a, Eigen::Vector3d e0, Eigen::Vector3d e1, cons
     sign = -1.0;
   }
   const Eigen::Vector3d inward = normal.cross(e1 - e0);
-  std::vector<double> f(a.size());
-  for (std::size_t i = 0; i < a.size(); ++i) f[i] = sign * inward.dot(a[i] - e0);
+  detail::SmallVector<double, 16> f;
+  for (std::size_t i = 0; i < a.size(); ++i) f.push_back(sign * inward.dot(a[i] - e0));
   Polygon out;
   for (std::size_t i = 0; i < a.size(); ++i) {
     const std::size_t j = (i + 1) % a.size();
@@ -70,6 +70,21 @@ Polygon intersect(const Polygon& a, const Polygon& b_across) {
     out = clip_left(out, b_across[j], b_across[i], normal);
   }
   return out.size() >= 3 ? out : Polygon{};
+}
+
+// Whether the boxes of two polygons are apart along an axis: then they share no area, and
+// intersect() (most of the pairs meshing tries) need not run.
+bool boxes_apart(const Polygon& a, const Polygon& b) {
+  Eigen::Vector3d a_low = a[0], a_high = a[0], b_low = b[0], b_high = b[0];
+  for (const auto& x : a) {
+    a_low = a_low.cwiseMin(x);
+    a_high = a_high.cwiseMax(x);
+  }
+  for (const auto& x : b) {
+    b_low = b_low.cwiseMin(x);
+    b_high = b_high.cwiseMax(x);
+  }
+  return (a_high.array() < b_low.array()).any() || (b_high.array() < a_low.array()).any();
 }
 
 const PieceFace* face_on(const TetPiece& piece, PieceFaceKind kind, int index) {
@@ -291,9 +306,14 @@ std::vector<int> collapse_short_edges(std::vector<Eigen::Vector3d>& vertices, st
   };
   std::vector<bool> alive(triangles.size(), true);
   find_short_edges(alive);
-  std::vector<std::vector<int>> around(vertices.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int i = 0; i < 3; ++i) around[static_cast<std::size_t>(triangles[t](i))].push_back(static_cast<int>(t));
+  // The triangles round each vertex, built only when there is an edge to collapse (most
+  // fragments have none, and a list per vertex is the allocator's work).
+  std::vector<std::vector<int>> around;
+  if (!short_edges.empty()) {
+    around.resize(vertices.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      for (int i = 0; i < 3; ++i) around[static_cast<std::size_t>(triangles[t](i))].push_back(static_cast<int>(t));
+  }
   const auto neighbours = [&](int v) {
     std::vector<int> out;
     for (int t : around[static_cast<std::size_t>(v)])
@@ -409,11 +429,15 @@ FragmentMesh triangulate(const std::vector<Emitted>& polygons, double tolerance)
     cracks.push_back(e.crack);
   }
   const auto& points = welder.points();
-  // Vertices by grid cell of the longest edge's size, to find those on an edge.
-  double cell = tolerance;
+  // Vertices by grid cell of twice the mean edge length, to find those on an edge (cells of the
+  // longest edge's size held most of a fragment's vertices: fragments are a few tets across).
+  // The test is exact on the cells' superset, so the cell size changes only the time.
+  double edge_sum = 0.0;
+  std::size_t edge_count = 0;
   for (const auto& loop : loops)
-    for (std::size_t i = 0; i < loop.size(); ++i)
-      cell = std::max(cell, (points[static_cast<std::size_t>(loop[i])] - points[static_cast<std::size_t>(loop[(i + 1) % loop.size()])]).norm());
+    for (std::size_t i = 0; i < loop.size(); ++i, ++edge_count)
+      edge_sum += (points[static_cast<std::size_t>(loop[i])] - points[static_cast<std::size_t>(loop[(i + 1) % loop.size()])]).norm();
+  const double cell = std::max(4.0 * tolerance, 2.0 * edge_sum / static_cast<double>(std::max<std::size_t>(edge_count, 1)));
   detail::PointGrid grid(cell, points.size());
   for (std::size_t v = 0; v < points.size(); ++v) grid.add(static_cast<int>(v), points[v]);
 
@@ -432,13 +456,14 @@ FragmentMesh triangulate(const std::vector<Emitted>& polygons, double tolerance)
       const Eigen::Vector3d ab = pb - pa;
       const double len2 = ab.squaredNorm();
       on_edge.clear();
-      const Eigen::Vector3d reach = Eigen::Vector3d::Constant(tolerance);
-      grid.visit_box(pa.cwiseMin(pb) - reach, pa.cwiseMax(pb) + reach, [&](int c) {
+      const auto visit = [&](int c) {
         if (c == a || c == b) return;
         const Eigen::Vector3d pc = points[static_cast<std::size_t>(c)];
         const double s = (pc - pa).dot(ab) / len2;
         if (s > 0.0 && s < 1.0 && (pa + s * ab - pc).norm() <= tolerance) on_edge.emplace_back(s, c);
-      });
+      };
+      grid.visit_box(pa.cwiseMin(pb) - Eigen::Vector3d::Constant(tolerance),
+                     pa.cwiseMax(pb) + Eigen::Vector3d::Constant(tolerance), visit);
       std::sort(on_edge.begin(), on_edge.end());
       for (const auto& [s, c] : on_edge) ring.push_back(c);
       inserted = inserted || !on_edge.empty();
@@ -550,14 +575,29 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
   }
   const auto cut = [&](int t) { return !pieces[static_cast<std::size_t>(t)].empty(); };
   const auto piece_id = [&](int t, std::size_t i) { return first_piece[static_cast<std::size_t>(t)] + static_cast<int>(i); };
+  // Each piece's part of the tet's four faces (null where it has none), looked up in the joins
+  // below instead of scanning its faces, which are large.
+  std::vector<std::array<const PieceFace*, 4>> piece_tet_faces(static_cast<std::size_t>(first_piece.back()),
+                                                               {nullptr, nullptr, nullptr, nullptr});
+  for (int t = 0; t < n; ++t) {
+    const auto& mine = pieces[static_cast<std::size_t>(t)];
+    for (std::size_t i = 0; i < mine.size(); ++i)
+      for (const PieceFace& f : mine[i].faces)
+        if (f.kind == PieceFaceKind::TetFace) piece_tet_faces[static_cast<std::size_t>(piece_id(t, i))][static_cast<std::size_t>(f.index)] = &f;
+  }
+  const auto tet_face_of = [&](int t, std::size_t i, int f) {
+    return piece_tet_faces[static_cast<std::size_t>(piece_id(t, i))][static_cast<std::size_t>(f)];
+  };
   // Polygons overlap with positive area, not a touch along an edge: more than round-off of the
-  // smaller one's area, and more than the faces tet_pieces keeps (1e-12 of an element's size²).
+  // smaller one's area, and more than the faces tet_pieces keeps (1e-20 of an element's size²).
   const double element = std::cbrt(8.5 * mesh.total_volume() / std::max(1, n));  // a regular tet's edge
-  const double area_floor = 1e-12 * element * element;
+  const double area_floor = 1e-20 * element * element;
   const auto shared_area = [&](const Polygon& a, const Polygon& b, double common) {
     return common > std::max(area_floor, 1e-9 * std::min(polygon_area(a), polygon_area(b)));
   };
-  const auto overlaps = [&](const Polygon& a, const Polygon& b) { return shared_area(a, b, polygon_area(intersect(a, b))); };
+  const auto overlaps = [&](const Polygon& a, const Polygon& b) {
+    return !boxes_apart(a, b) && shared_area(a, b, polygon_area(intersect(a, b)));
+  };
 
   detail::UnionFind sets(static_cast<std::size_t>(first_piece.back()));
   for (int t = 0; t < n; ++t) {
@@ -584,38 +624,21 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
         const int whole = cut(t) ? u : t, split = cut(t) ? t : u, face = cut(t) ? f : g;
         const auto& theirs = pieces[static_cast<std::size_t>(split)];
         for (std::size_t j = 0; j < theirs.size(); ++j)
-          if (face_on(theirs[j], PieceFaceKind::TetFace, face)) sets.unite(piece_id(whole, 0), piece_id(split, j));
+          if (tet_face_of(split, j, face)) sets.unite(piece_id(whole, 0), piece_id(split, j));
         continue;
       }
       const auto& theirs = pieces[static_cast<std::size_t>(u)];
       for (std::size_t i = 0; i < mine.size(); ++i) {
-        const PieceFace* a = face_on(mine[i], PieceFaceKind::TetFace, f);
+        const PieceFace* a = tet_face_of(t, i, f);
         if (!a) continue;
         for (std::size_t j = 0; j < theirs.size(); ++j) {
-          const PieceFace* b = face_on(theirs[j], PieceFaceKind::TetFace, g);
+          const PieceFace* b = tet_face_of(u, j, g);
           if (b && overlaps(a->points, b->points)) sets.unite(piece_id(t, i), piece_id(u, j));
         }
       }
     }
   }
 
-  // Fragments in order of their lowest piece (the union-find root), hence of their lowest tet.
-  std::vector<int> fragment_of_root(sets.size(), -1);
-  std::vector<int> first_tet;
-  std::vector<int> fragment_of_piece(sets.size());
-  for (int t = 0; t < n; ++t) {
-    for (int id = first_piece[static_cast<std::size_t>(t)]; id < first_piece[static_cast<std::size_t>(t) + 1]; ++id) {
-      const int root = sets.find(id);
-      if (fragment_of_root[static_cast<std::size_t>(root)] < 0) {
-        fragment_of_root[static_cast<std::size_t>(root)] = static_cast<int>(first_tet.size());
-        first_tet.push_back(t);
-      }
-      fragment_of_piece[static_cast<std::size_t>(id)] = fragment_of_root[static_cast<std::size_t>(root)];
-    }
-  }
-
-  std::vector<std::vector<Emitted>> emitted(first_tet.size());
-  std::vector<std::map<int, double>> contact_area(first_tet.size());
   // An uncut tet's faces, wound outward.
   const auto tet_face = [&](int t, int f) {
     const auto p = tet_nodes(t);
@@ -625,35 +648,80 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
     if (polygon_area_vector(face).dot(face[0] - inner) < 0.0) std::reverse(face.begin(), face.end());
     return face;
   };
-  for (int t = 0; t < n; ++t) {
-    if (!cut(t)) {
-      for (int f = 0; f < 4; ++f)
-        if (mesh.neighbours()(t, f) < 0) emitted[static_cast<std::size_t>(fragment_of_piece[static_cast<std::size_t>(piece_id(t, 0))])].push_back({tet_face(t, f), -1});
-      continue;
+  // Debris: where three cracks meet within round-off of each other (at a corner, say) the
+  // construction can leave a fragment a few 1e-8 of the body across. Its edges are below what
+  // float32 files resolve (collapse_short_edges' 3e-7 of the coordinates), so its mesh and its
+  // neighbours' faces on it would be collapsed open; it joins the neighbour it shares the most
+  // crack area with, and the fragments are assigned again (a pass only when there is debris).
+  const double debris_size = 3e-6 * std::max(diagonal, box.cwiseAbs().maxCoeff());
+  std::vector<int> fragment_of_piece(sets.size()), first_tet, representative;
+  std::vector<std::vector<Emitted>> emitted;
+  std::vector<std::map<int, double>> contact_area;
+  for (bool again = true; again;) {
+    // Fragments in order of their lowest piece (the union-find root), hence of their lowest tet.
+    std::vector<int> fragment_of_root(sets.size(), -1);
+    first_tet.clear();
+    representative.clear();
+    for (int t = 0; t < n; ++t) {
+      for (int id = first_piece[static_cast<std::size_t>(t)]; id < first_piece[static_cast<std::size_t>(t) + 1]; ++id) {
+        const int root = sets.find(id);
+        if (fragment_of_root[static_cast<std::size_t>(root)] < 0) {
+          fragment_of_root[static_cast<std::size_t>(root)] = static_cast<int>(first_tet.size());
+          first_tet.push_back(t);
+          representative.push_back(id);
+        }
+        fragment_of_piece[static_cast<std::size_t>(id)] = fragment_of_root[static_cast<std::size_t>(root)];
+      }
     }
-    const auto& mine = pieces[static_cast<std::size_t>(t)];
-    for (std::size_t i = 0; i < mine.size(); ++i) {
-      const int fragment = fragment_of_piece[static_cast<std::size_t>(piece_id(t, i))];
-      auto& out = emitted[static_cast<std::size_t>(fragment)];
-      for (const PieceFace& face : mine[i].faces) {
-        if (face.kind == PieceFaceKind::TetFace) {
-          if (mesh.neighbours()(t, face.index) < 0) out.push_back({face.points, -1});
-        } else if (face.kind == PieceFaceKind::Crack) {
-          // The crack between this piece and each piece across it of another fragment.
-          for (std::size_t j = 0; j < mine.size(); ++j) {
-            if (j == i || fragment_of_piece[static_cast<std::size_t>(piece_id(t, j))] == fragment) continue;
-            const PieceFace* across = face_on(mine[j], PieceFaceKind::Crack, face.index);
-            if (!across) continue;
-            Polygon common = intersect(face.points, across->points);
-            // Against the smaller polygon: a sliver across a large face is real.
-            const double common_area = polygon_area(common);
-            if (shared_area(face.points, across->points, common_area)) {
-              contact_area[static_cast<std::size_t>(fragment)][fragment_of_piece[static_cast<std::size_t>(piece_id(t, j))]] += common_area;
-              out.push_back({std::move(common), face.index});
+
+    emitted.assign(first_tet.size(), {});
+    contact_area.assign(first_tet.size(), {});
+    for (int t = 0; t < n; ++t) {
+      if (!cut(t)) {
+        for (int f = 0; f < 4; ++f)
+          if (mesh.neighbours()(t, f) < 0) emitted[static_cast<std::size_t>(fragment_of_piece[static_cast<std::size_t>(piece_id(t, 0))])].push_back({tet_face(t, f), -1});
+        continue;
+      }
+      const auto& mine = pieces[static_cast<std::size_t>(t)];
+      for (std::size_t i = 0; i < mine.size(); ++i) {
+        const int fragment = fragment_of_piece[static_cast<std::size_t>(piece_id(t, i))];
+        auto& out = emitted[static_cast<std::size_t>(fragment)];
+        for (const PieceFace& face : mine[i].faces) {
+          if (face.kind == PieceFaceKind::TetFace) {
+            if (mesh.neighbours()(t, face.index) < 0) out.push_back({face.points, -1});
+          } else if (face.kind == PieceFaceKind::Crack) {
+            // The crack between this piece and each piece across it of another fragment.
+            for (std::size_t j = 0; j < mine.size(); ++j) {
+              if (j == i || fragment_of_piece[static_cast<std::size_t>(piece_id(t, j))] == fragment) continue;
+              const PieceFace* across = face_on(mine[j], PieceFaceKind::Crack, face.index);
+              if (!across || boxes_apart(face.points, across->points)) continue;
+              Polygon common = intersect(face.points, across->points);
+              // Against the smaller polygon: a sliver across a large face is real.
+              const double common_area = polygon_area(common);
+              if (shared_area(face.points, across->points, common_area)) {
+                contact_area[static_cast<std::size_t>(fragment)][fragment_of_piece[static_cast<std::size_t>(piece_id(t, j))]] += common_area;
+                out.push_back({std::move(common), face.index});
+              }
             }
           }
         }
       }
+    }
+
+    again = false;
+    for (std::size_t k = 0; k < emitted.size(); ++k) {
+      if (contact_area[k].empty() || emitted[k].empty()) continue;
+      Eigen::Vector3d low = emitted[k][0].polygon[0], high = low;
+      for (const Emitted& e : emitted[k])
+        for (const auto& x : e.polygon) {
+          low = low.cwiseMin(x);
+          high = high.cwiseMax(x);
+        }
+      if ((high - low).norm() >= debris_size) continue;
+      const auto largest = std::max_element(contact_area[k].begin(), contact_area[k].end(),
+                                            [](const auto& x, const auto& y) { return x.second < y.second; });
+      sets.unite(representative[k], representative[static_cast<std::size_t>(largest->first)]);
+      again = true;
     }
   }
 

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
+#include <span>
 
 namespace fissure::detail {
 
@@ -19,19 +19,19 @@ inline bool position_before(const Eigen::Vector3d& a, const Eigen::Vector3d& b) 
 }
 
 // Σ (p_i − p_0) × (p_{i+1} − p_0): twice the area times the unit normal.
-inline Eigen::Vector3d polygon_area_vector(const std::vector<Eigen::Vector3d>& p) {
+inline Eigen::Vector3d polygon_area_vector(std::span<const Eigen::Vector3d> p) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   for (std::size_t i = 1; i + 1 < p.size(); ++i) sum += (p[i] - p[0]).cross(p[i + 1] - p[0]);
   return sum;
 }
 
-inline double polygon_area(const std::vector<Eigen::Vector3d>& p) { return 0.5 * polygon_area_vector(p).norm(); }
+inline double polygon_area(std::span<const Eigen::Vector3d> p) { return 0.5 * polygon_area_vector(p).norm(); }
 
 // Distance from x to a planar convex polygon with unit normal n: to the plane when x projects
 // inside it (on the same side of every edge, the winding either way round), else to its nearest
 // edge. The edges are measured only when outside: relaxation calls this for every tet near a
 // crack, and most of them project inside the polygon of the crack's nearest tet.
-inline double polygon_distance(const Eigen::Vector3d& x, const std::vector<Eigen::Vector3d>& p,
+inline double polygon_distance(const Eigen::Vector3d& x, std::span<const Eigen::Vector3d> p,
                                const Eigen::Vector3d& n) {
   if (p.empty()) return std::numeric_limits<double>::infinity();
   if (p.size() == 1) return (x - p[0]).norm();

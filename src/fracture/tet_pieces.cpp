@@ -52,19 +52,43 @@ struct Split {
 // they go to both sides and no crossing is computed next to them. A crossing is computed from
 // its segment's lexicographically first end, so the faces sharing the segment (in this tet or
 // the next) get the same bits.
-Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plane, double on_plane, double min_area2) {
+Split split(TetPiece&& piece, const TetFrame& frame, const SplitPlane& plane, double on_plane, double min_area2) {
+  // Most pieces a crack's tets hold lie on one side of it: found first, they move through whole.
+  {
+    bool pos_side = false, neg_side = false;
+    for (const PieceFace& face : piece.faces)
+      for (const Eigen::Vector4d& w : face.weights) {
+        const double v = plane.sign * frame.value(*plane.node_values, w);
+        pos_side = pos_side || v > on_plane;
+        neg_side = neg_side || v < -on_plane;
+      }
+    Split out;
+    if (!neg_side) {
+      out.positive = std::move(piece);
+      return out;
+    }
+    if (!pos_side) {
+      out.negative = std::move(piece);
+      return out;
+    }
+  }
   TetPiece pos{piece.key, {}}, neg{piece.key, {}};
-  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector4d>> cap;  // the section's points, unordered
-  bool any_pos = false, any_neg = false;
+  pos.faces.reserve(piece.faces.size() + 1);
+  neg.faces.reserve(piece.faces.size() + 1);
+  SmallVector<std::pair<Eigen::Vector3d, Eigen::Vector4d>, 16> cap;  // the section's points, unordered
   for (const PieceFace& face : piece.faces) {
     const std::size_t n = face.points.size();
-    std::vector<double> value(n);
-    std::vector<int> side(n);
+    SmallVector<double, 16> value;
+    SmallVector<int, 16> side;
+    value.reserve(n);
+    side.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      value.push_back(0.0);
+      side.push_back(0);
+    }
     for (std::size_t i = 0; i < n; ++i) {
       value[i] = plane.sign * frame.value(*plane.node_values, face.weights[i]);
       side[i] = value[i] > on_plane ? 1 : (value[i] < -on_plane ? -1 : 0);
-      any_pos = any_pos || side[i] > 0;
-      any_neg = any_neg || side[i] < 0;
     }
     PieceFace fp{face.kind, face.index, {}, {}}, fn{face.kind, face.index, {}, {}};
     const auto add = [](PieceFace& f, const Eigen::Vector3d& x, const Eigen::Vector4d& w) {
@@ -91,20 +115,12 @@ Split split(const TetPiece& piece, const TetFrame& frame, const SplitPlane& plan
     if (fn.points.size() >= 3 && polygon_area_vector(fn.points).squaredNorm() > min_area2) neg.faces.push_back(std::move(fn));
   }
   Split out;
-  if (!any_neg) {
-    out.positive = piece;
-    return out;
-  }
-  if (!any_pos) {
-    out.negative = piece;
-    return out;
-  }
   // The section: the cap points without repeats (each crossing is found by both faces of its
   // segment, with the same bits), in order round their mean in the plane.
   const auto before = [](const auto& a, const auto& b) { return position_before(a.first, b.first); };
   std::sort(cap.begin(), cap.end(), before);
-  cap.erase(std::unique(cap.begin(), cap.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
-            cap.end());
+  cap.truncate(static_cast<std::size_t>(
+      std::unique(cap.begin(), cap.end(), [](const auto& a, const auto& b) { return a.first == b.first; }) - cap.begin()));
   if (cap.size() >= 3) {
     const Eigen::Vector3d normal = plane.gradient.normalized();  // out of the negative side
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -180,7 +196,10 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
   if (cuts.empty()) return pieces;
 
   const double size = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).maxCoeff();
-  const double min_area2 = std::pow(1e-12 * size * size, 2);  // round-off of a flat face is ~1e-16 size²
+  // Faces below 1e-20 size² (1e-10 of the size across, where fragment meshing welds points) are
+  // dropped. A face 3e-8 across is real: where four cracks meet within round-off they bound a
+  // cell that small, and dropping its faces (at 1e-12 size²) left holes in its neighbours.
+  const double min_area2 = std::pow(1e-20 * size * size, 2);
   double on_plane = options.on_plane;
   if (!(on_plane > 0.0)) {
     for (const TetCutPlane& c : cuts)
@@ -194,10 +213,11 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
       if (cuts[i].crack == c.clipped_by) clip = static_cast<std::ptrdiff_t>(i);
     const SplitPlane crack{&c.node_values, 1.0, gradient(nodes, c.node_values), PieceFaceKind::Crack, c.crack};
     std::vector<TetPiece> next;
-    for (const TetPiece& piece : pieces) {
-      std::vector<TetPiece> arrival;  // the parts crack c divides
+    next.reserve(2 * pieces.size());
+    for (TetPiece& piece : pieces) {
+      SmallVector<TetPiece, 2> arrival;  // the parts crack c divides
       if (clip < 0) {
-        arrival.push_back(piece);
+        arrival.push_back(std::move(piece));
       } else {
         // Crack c exists on the side clip_side·S_i > 0 of the clipping crack's plane. Where
         // that crack does not exist across the piece (its own code 0), the piece is divided
@@ -206,15 +226,15 @@ std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::
         const double sign = c.clip_side < 0 ? -1.0 : 1.0;
         const SplitPlane clipping{&ci.node_values, sign, sign * gradient(nodes, ci.node_values), PieceFaceKind::Open,
                                   ci.crack};
-        Split s = split(piece, frame, clipping, on_plane, min_area2);
+        Split s = split(std::move(piece), frame, clipping, on_plane, min_area2);
         if (s.positive) arrival.push_back(std::move(*s.positive));
         if (s.negative) {
           s.negative->key.push_back('\0');
           next.push_back(std::move(*s.negative));
         }
       }
-      for (const TetPiece& part : arrival) {
-        Split s = split(part, frame, crack, on_plane, min_area2);
+      for (TetPiece& part : arrival) {
+        Split s = split(std::move(part), frame, crack, on_plane, min_area2);
         if (s.positive) {
           s.positive->key.push_back('\1');
           next.push_back(std::move(*s.positive));

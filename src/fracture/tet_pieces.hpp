@@ -17,6 +17,8 @@
 // Seams are exact: every vertex is kept as barycentric weights on the tet's nodes, and values
 // and positions are summed over the nodes in a caller-given order (ascending global node id),
 // so a point on a face two tets share gets the same bits in both.
+#include "small_vector.hpp"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -44,10 +46,11 @@ enum class PieceFaceKind {
 struct PieceFace {
   PieceFaceKind kind = PieceFaceKind::TetFace;
   int index = -1;
-  /// A planar convex polygon, counter-clockwise seen from outside the piece.
-  std::vector<Eigen::Vector3d> points;
+  /// A planar convex polygon, counter-clockwise seen from outside the piece (a tet face cut by
+  /// k planes has at most 3 + k corners: 8 in place covers all but rare faces).
+  SmallVector<Eigen::Vector3d, 8> points;
   /// Each point's barycentric weights on the tet's local nodes (0 exactly off its face).
-  std::vector<Eigen::Vector4d> weights;
+  SmallVector<Eigen::Vector4d, 8> weights;
 };
 
 struct TetPieceOptions {
@@ -66,8 +69,8 @@ struct TetPiece {
 };
 
 /// The convex pieces of the tet with corner positions `nodes` (rows, local order) cut by `cuts`
-/// (in crack order, as the labeller lists a tet's cuts). Pieces thinner than 1e-12 of the tet's
-/// size are dropped. Without cuts: the tet itself, key "".
+/// (in crack order, as the labeller lists a tet's cuts). Faces smaller than 1e-20 of the tet's
+/// size², and pieces left with fewer than four faces or no volume, are dropped. Without cuts: the tet itself, key "".
 std::vector<TetPiece> tet_pieces(const Eigen::Matrix<double, 4, 3>& nodes, std::span<const TetCutPlane> cuts,
                                  const TetPieceOptions& options = {});
 

@@ -173,6 +173,48 @@ TEST(FragmentMesh, ATJunctionMakesThreeClosedFragments) {
   for (const auto& [k, v] : crack_area_vectors(fragments)) EXPECT_LT(v.norm(), 1e-12) << "crack " << k;
 }
 
+// Four cracks through the whole box, x = a, y = b, z = c and x + y + z = a + b + c + ε, bound a
+// tetrahedral cell ε across at (a, b, c). At ε = 0.05 it is a fragment like any other; at
+// ε = 3e-8 (what three simulated cracks meeting within round-off leave) its edges are below
+// what float32 files resolve, and meshed alone it came out open (its short edges collapsed).
+// It must join a neighbour: one fragment fewer, all closed, none that small, volume kept.
+TEST(FragmentMesh, DebrisWhereCracksMeetWithinRoundOffJoinsANeighbour) {
+  const TetMesh mesh = make_structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), 4, 4, 4);
+  // Away from the nodes (multiples of 0.25) by far more than the 1e-5 the meshing moves cracks.
+  const double a = 0.3137, b = 0.4271, c = 0.2219;
+  const auto fragments_at = [&](double epsilon) {
+    std::vector<CrackSurface> cracks{
+        plane_crack(mesh, 0, [&](const Eigen::Vector3d& x) { return x.x() - a; }, [](int) { return true; }),
+        plane_crack(mesh, 1, [&](const Eigen::Vector3d& x) { return x.y() - b; }, [](int) { return true; }),
+        plane_crack(mesh, 2, [&](const Eigen::Vector3d& x) { return x.z() - c; }, [](int) { return true; }),
+        plane_crack(mesh, 3, [&](const Eigen::Vector3d& x) { return x.sum() - (a + b + c + epsilon); },
+                    [](int) { return true; })};
+    return mesh_fragments(mesh, cracks, 4);
+  };
+  const auto coarse = fragments_at(0.05), debris = fragments_at(3e-8);
+  EXPECT_EQ(debris.size() + 1, coarse.size());
+  for (const auto* set : {&coarse, &debris}) {
+    double total = 0.0, moved = 0.0;
+    for (const auto& f : *set) {
+      EXPECT_TRUE(closed(f));
+      Eigen::Vector3d size = f.vertices.colwise().maxCoeff() - f.vertices.colwise().minCoeff();
+      EXPECT_GT(size.norm(), 1e-3);  // the smallest real cell here is 0.05 across
+      total += f.volume;
+      // A vertex moved by d (a collapsed 3e-8 edge) changes the volume by at most d times the
+      // area round it, so by at most max_move times the fragment's surface area.
+      double area = 0.0;
+      for (Eigen::Index t = 0; t < f.triangles.rows(); ++t) {
+        const Eigen::Vector3d p = f.vertices.row(f.triangles(t, 0)), q = f.vertices.row(f.triangles(t, 1)),
+                              r = f.vertices.row(f.triangles(t, 2));
+        area += 0.5 * (q - p).cross(r - p).norm();
+      }
+      moved += f.max_move * area;
+    }
+    // Round-off of sums of a few thousand products of size 1, plus the collapses' bound.
+    EXPECT_NEAR(total, 1.0, 1e-11 + moved);
+  }
+}
+
 // The simulation's own cracks (turning, stars, T junctions, noise) on a 30 cm tile.
 TEST(FragmentMesh, SimulatedCracksGiveClosedFragmentsThatFillTheTile) {
   auto mesh = std::make_shared<const TetMesh>(

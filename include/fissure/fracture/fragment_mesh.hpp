@@ -5,7 +5,9 @@
 /// with positive area, so a crack that ends inside the body (partial) does not separate. A
 /// fragment's surface is its pieces' faces on the body's boundary and on cracks between it and
 /// other fragments; faces of partial cracks are dropped (they separate nothing and would leave
-/// zero-thickness slits inside a mesh that engines treat as solid).
+/// zero-thickness slits inside a mesh that engines treat as solid). A fragment less than 3e-6 of
+/// the body's size (or of its distance from the origin) across — debris where cracks meet within
+/// round-off — joins the neighbour it shares the most crack area with: float32 files cannot hold it.
 #include "fissure/fracture/crack_surface.hpp"
 #include "fissure/mesh/tet_mesh.hpp"
 
