@@ -62,6 +62,26 @@ SECTION_NOTES = {
                              "simulation case): extract_visible_pattern alone (traces, "
                              "junctions, exact fragments on the top face), then with compute_pattern_stats (what a "
                              "fit trial adds to a simulation), and the 1024 px line drawing.",
+    "bench_fragments": "Closed fragment meshes and their export (issue 11), one thread: the CGAL 1 × 1 × 0.05 m tile "
+                       "at 7K and 54K tets, the bundled default material at its default age, seed 1. "
+                       "`MeshFragments`: mesh_fragments (`pieces` closed meshes, `triangles` in all); "
+                       "`FragmentScene`: the export scene (UV charts, per-fragment values); `EncodeScene/…/format:F`: "
+                       "its bytes in memory, F = 0 GLB, 1 glTF (base64 buffers), 2 OBJ (text), 3 PLY (`MB`: the "
+                       "size). `BM_Race` rows are the race's (`bench_race_cell_fracture`, run on 2 threads by "
+                       "scripts/race-cell-fracture.sh); here on one.",
+    "bench_race_cell_fracture": "The race (issue 11), by scripts/race-cell-fracture.sh, both sides in one run on this "
+                                "machine: Blender 3.4's Cell Fracture add-on (Debian's `blender`, all cores, N seeded "
+                                "random points in the 1 × 1 × 0.05 m tile, margin 0; time = the operator; `closed` = "
+                                "shards closed after Merge by Distance at 1e-6 m, `closed_as_made` before it: the add-on "
+                                "gives each cell its own seam vertices) against Fissure with the body prepared "
+                                "(tet mesh, factor, σ⁰ and resistance done once; time = simulating the cracks that give "
+                                "about N closed meshes + meshing them, 2 threads, median of 3). `volume_err`: |Σ piece "
+                                "volumes − body volume| / body volume. `process_s`: whole processes, `blender -b --python` "
+                                "and `fissure fracture tile:1,1,0.05 --tets T --fragments N -o fragments.glb` start to "
+                                "exit (`process_pieces`: the closed meshes that run wrote; `--fragments` aims the "
+                                "labeller's count, which runs ahead of the meshes' on dense patterns). `speedup`: "
+                                "Blender's time / Fissure's. Targets: ≥ 10× at 50 pieces, ≥ 30× at 1000, every piece "
+                                "closed. `machine:` rows are bench_machine's from the same run.",
     "bench_msh": "gmsh MSH 4.1 write and read through the gmsh API.",
     "bench_fem": "FEM kernels on the CGAL tile (corner supports, 10 kN on a 5 cm centre patch). Targets at 24K "
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "

@@ -1,0 +1,79 @@
+# Blender's side of the race (scripts/race-cell-fracture.sh): its Cell Fracture add-on breaks a
+# 1 x 1 x 0.05 m tile into about N pieces from N seeded random points, and this reports the time
+# of the operator, the pieces, how many are closed and the volume error, as one JSON line.
+#
+# Run: blender -b --factory-startup -t 0 --python scripts/race_cell_fracture.py -- N SEED
+# (-t 0: all cores, as an artist runs it). The points are uniform in the tile, drawn by Python's
+# random.Random(SEED); Cell Fracture's own jitter draws from `random`, seeded the same.
+import json
+import random
+import sys
+import time
+
+import addon_utils
+import bmesh
+import bpy
+
+argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+if len(argv) != 2:
+    print("usage: blender -b --python race_cell_fracture.py -- PIECES SEED", file=sys.stderr)
+    sys.exit(2)
+pieces, seed = int(argv[0]), int(argv[1])
+size = (1.0, 1.0, 0.05)
+
+addon_utils.enable("object_fracture_cell", default_set=True)
+bpy.ops.wm.read_factory_settings(use_empty=True)
+addon_utils.enable("object_fracture_cell", default_set=True)
+
+# The tile: a box centred on the origin.
+bpy.ops.mesh.primitive_cube_add(size=1.0, location=(0.0, 0.0, 0.0))
+tile = bpy.context.active_object
+tile.scale = size
+bpy.ops.object.transform_apply(location=False, rotation=False, scale=True)
+
+# The seed points: a child mesh of loose vertices (source 'VERT_CHILD').
+rng = random.Random(seed)
+points = [tuple((rng.random() - 0.5) * s for s in size) for _ in range(pieces)]
+cloud = bpy.data.meshes.new("seeds")
+cloud.from_pydata(points, [], [])
+seeds = bpy.data.objects.new("seeds", cloud)
+bpy.context.collection.objects.link(seeds)
+seeds.parent = tile
+
+bpy.ops.object.select_all(action="DESELECT")
+tile.select_set(True)
+bpy.context.view_layer.objects.active = tile
+random.seed(seed)
+before = set(bpy.data.objects)
+t0 = time.perf_counter()
+bpy.ops.object.add_fracture_cell_objects(source={"VERT_CHILD"}, source_limit=0, source_noise=0.0,
+                                         margin=0.0, use_recenter=True, use_remove_original=True)
+seconds = time.perf_counter() - t0
+
+shards = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+
+
+def is_closed(bm):
+    # Every edge has exactly two faces, wound consistently (Blender's own predicates).
+    return bool(bm.edges) and all(e.is_manifold and e.is_contiguous for e in bm.edges)
+
+
+# Cell Fracture leaves each cell's faces with their own copies of the seam vertices: as produced,
+# no shard is closed. An artist runs Merge by Distance; `closed` counts the shards closed after
+# it at 1e-6 m (Blender's default is 1e-4), `closed_as_made` before.
+closed = closed_as_made = 0
+volume = 0.0
+for o in shards:
+    bm = bmesh.new()
+    bm.from_mesh(o.data)
+    bm.transform(o.matrix_world)
+    closed_as_made += is_closed(bm)
+    bmesh.ops.remove_doubles(bm, verts=bm.verts, dist=1e-6)
+    closed += is_closed(bm)
+    volume += bm.calc_volume(signed=True)
+    bm.free()
+body = size[0] * size[1] * size[2]
+print("RACE " + json.dumps({"tool": "blender_cell_fracture", "blender": bpy.app.version_string, "seeds": pieces,
+                            "seed": seed, "seconds": seconds, "pieces": len(shards), "closed": closed,
+                            "closed_as_made": closed_as_made,
+                            "volume_err": abs(volume - body) / body}))
