@@ -5,11 +5,11 @@
 // fragment, and node-based maps made the allocator its largest cost).
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-#include <algorithm>
 
 namespace fissure::detail {
 

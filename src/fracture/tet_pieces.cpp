@@ -80,15 +80,9 @@ Split split(TetPiece&& piece, const TetFrame& frame, const SplitPlane& plane, do
     const std::size_t n = face.points.size();
     SmallVector<double, 16> value;
     SmallVector<int, 16> side;
-    value.reserve(n);
-    side.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
-      value.push_back(0.0);
-      side.push_back(0);
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      value[i] = plane.sign * frame.value(*plane.node_values, face.weights[i]);
-      side[i] = value[i] > on_plane ? 1 : (value[i] < -on_plane ? -1 : 0);
+      value.push_back(plane.sign * frame.value(*plane.node_values, face.weights[i]));
+      side.push_back(value[i] > on_plane ? 1 : (value[i] < -on_plane ? -1 : 0));
     }
     PieceFace fp{face.kind, face.index, {}, {}}, fn{face.kind, face.index, {}, {}};
     const auto add = [](PieceFace& f, const Eigen::Vector3d& x, const Eigen::Vector4d& w) {
