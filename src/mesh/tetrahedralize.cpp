@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -261,6 +262,30 @@ void remove_slivers(Refinement& r, const TetrahedralizeOptions& options, Progres
   if (!cancel->cancelled()) sink.report("tetrahedralize", to);
 }
 
+// A cell of (nearly) zero volume with a facet on the complex's boundary. Sliver removal leaves
+// such cells where four boundary vertices are cocircular on a flat face (a 12-triangle box
+// centred on the origin, meshed at 3000 tets, kept one: all four corners on its top face).
+// All its facets lie in one plane, so dropping it exposes the facets behind it, which cover the
+// same part of that plane: the volume and the boundary are unchanged. A flat cell inside the
+// body is not dropped (its neighbours on either side would not share faces); TetMesh refuses it.
+template <class Cell>
+bool is_flat_boundary_cell(const Complex& c3t3, const Cell& c) {
+  std::array<Eigen::Vector3d, 4> p;
+  for (int k = 0; k < 4; ++k) {
+    const auto& q = c->vertex(k)->point();
+    p[static_cast<std::size_t>(k)] = Eigen::Vector3d(CGAL::to_double(q.x()), CGAL::to_double(q.y()), CGAL::to_double(q.z()));
+  }
+  const double volume = (p[1] - p[0]).dot((p[2] - p[0]).cross(p[3] - p[0])) / 6.0;
+  double longest = 0.0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) longest = std::max(longest, (p[static_cast<std::size_t>(i)] - p[static_cast<std::size_t>(j)]).norm());
+  // TetMesh's zero-volume test (kZeroVolume in tet_mesh.cpp), which would refuse the cell.
+  if (std::abs(volume) > 1e-12 * longest * longest * longest) return false;
+  for (int k = 0; k < 4; ++k)
+    if (!c3t3.is_in_complex(c->neighbor(k))) return true;
+  return false;
+}
+
 // The complex's cells as a TetMesh, nodes multiplied by `unscale` (a power of two, so exactly).
 // Nodes are numbered in order of first use by the cells, cells in the complex's order: both are
 // fixed by the (deterministic) triangulation.
@@ -269,6 +294,7 @@ TetMesh to_tet_mesh(const Complex& c3t3, double unscale, const std::string& sour
   std::vector<Eigen::Vector3d> points;
   std::vector<Eigen::Vector4i> cells;
   for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
+    if (is_flat_boundary_cell(c3t3, c)) continue;
     Eigen::Vector4i tet;
     for (int k = 0; k < 4; ++k) {
       const auto vh = c->vertex(k);

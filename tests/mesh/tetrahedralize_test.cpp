@@ -125,6 +125,33 @@ TEST(Tetrahedralize, ThinTileKeepsItsCornersAndVolume) {
   }
 }
 
+// A user's 12-triangle box centred on the origin (0.4 × 0.4 × 0.03 m, as an OBJ exported from a
+// modeller): at 3000 tets sliver removal left a cell of zero volume with its four corners on
+// the top face (cocircular boundary vertices), and the mesher threw. Such a cell is dropped (the
+// facets behind it cover the same part of the face), so the box is filled exactly.
+TEST(Tetrahedralize, FlatCellOnAFaceIsDroppedAndTheBoxStaysFilled) {
+  SurfaceMesh box;
+  box.vertices.resize(8, 3);
+  // Vertex i: bit 2 → +x, bit 1 → +y, bit 0 → +z; each face a fan from its first corner.
+  for (int i = 0; i < 8; ++i) box.vertices.row(i) << ((i & 4) ? 0.2 : -0.2), ((i & 2) ? 0.2 : -0.2), ((i & 1) ? 0.015 : -0.015);
+  box.faces.resize(12, 3);
+  box.faces << 1, 5, 7, 1, 7, 3,  // top
+      0, 2, 6, 0, 6, 4,           // bottom
+      4, 6, 7, 4, 7, 5,           // +x
+      0, 1, 3, 0, 3, 2,           // −x
+      2, 3, 7, 2, 7, 6,           // +y
+      0, 4, 5, 0, 5, 1;           // −y
+  TetrahedralizeOptions options;
+  options.target_tets = 3000;
+  const TetMesh m = tetrahedralize(box, options);
+  EXPECT_NEAR(m.total_volume(), 0.4 * 0.4 * 0.03, 1e-15);  // round-off of ~3000 tet volumes
+  EXPECT_EQ(m.component_count(), 1);
+  expect_boundary_on_box(m, {-0.2, -0.2, -0.015}, {0.2, 0.2, 0.015});
+  double area = 0.0;
+  for (const BoundaryFace& f : m.boundary_faces()) area += f.area;
+  EXPECT_NEAR(area, 2.0 * 0.4 * 0.4 + 4.0 * 0.4 * 0.03, 1e-12);  // no face covered twice
+}
+
 TEST(Tetrahedralize, SameInputSameMesh) {
   TetrahedralizeOptions options;
   options.target_tets = 3000;
