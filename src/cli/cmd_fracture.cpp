@@ -110,13 +110,17 @@ FractureParams params_from(const FractureArgs& args, std::string& material_name)
   return p;
 }
 
-std::shared_ptr<const TetMesh> mesh_from(const FractureArgs& args, TerminalProgress& progress) {
+// The tet mesh of the input; `appearance` receives the input surface's materials and UVs (none
+// for a .msh or a tile).
+std::shared_ptr<const TetMesh> mesh_from(const FractureArgs& args, TerminalProgress& progress, SurfaceAppearance& appearance) {
   progress.stage("reading " + args.input);
   if (!is_tile_spec(args.input) && lower_extension(args.input) == ".msh") {
     return std::make_shared<const TetMesh>(read_msh(args.input));
   }
   SurfaceRepairReport repairs;
-  const SurfaceMesh surface = load_surface_input(args.input, repairs);
+  SurfaceMesh surface = load_surface_input(args.input, repairs);
+  appearance = std::move(surface.appearance);
+  surface.appearance = {};
   for (const std::string& action : repairs.actions) std::cerr << "fissure fracture: repaired " << args.input << ": " << action << '\n';
   TetrahedralizeOptions options;
   options.target_tets = static_cast<int>(std::lround(args.tets));
@@ -158,6 +162,7 @@ int run_fracture(const FractureArgs& args) {
   TerminalProgress progress(args.quiet);
   Stopwatch clock;
   std::shared_ptr<const TetMesh> mesh;
+  SurfaceAppearance appearance;
   std::unique_ptr<PreparedBody> prepared;
   StressField initial;
   Eigen::VectorXd resistance;
@@ -165,7 +170,7 @@ int run_fracture(const FractureArgs& args) {
   double preparation_s = 0.0, simulation_s = 0.0;
   {
     AbandonableWork work;
-    mesh = mesh_from(args, progress);
+    mesh = mesh_from(args, progress, appearance);
     require_memory(static_solve_bytes(mesh->tet_count()), memory_limit(args.allow_large), "fracturing " + args.input);
     progress.stage("preparing the body");
     prepared = std::make_unique<PreparedBody>(mesh, params.elastic(), scenario, thread_count());
@@ -210,7 +215,7 @@ int run_fracture(const FractureArgs& args) {
     fragment_meshes = fragments.size();
     progress.stage("writing " + args.output);
     Stopwatch exporting;
-    write_scene(args.output, fragment_scene(fragments, result.cracks, params.density));
+    write_scene(args.output, fragment_scene(fragments, result.cracks, params.density, appearance));
     export_s = exporting.milliseconds() / 1e3;
   }
 

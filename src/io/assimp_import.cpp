@@ -8,6 +8,7 @@
 #include "fissure/base/error.hpp"
 
 #include <assimp/Importer.hpp>
+#include <assimp/material.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -23,6 +24,71 @@ std::string mesh_label(const aiMesh& mesh, unsigned index) {
   std::string label = "mesh " + std::to_string(index + 1);
   if (mesh.mName.length > 0) label += " ('" + std::string(mesh.mName.C_Str()).substr(0, 60) + "')";
   return label;
+}
+
+// The materials and first UV channel of the triangle meshes, as SurfaceAppearance's soup, or
+// nothing when the file has neither UVs nor a named material (assimp names the material it adds
+// to a file without one "DefaultMaterial").
+SurfaceAppearance appearance_of(const aiScene& scene, const SurfaceMesh& surface) {
+  SurfaceAppearance a;
+  bool has_uvs = false, named = false;
+  std::vector<int> material_of_scene_material(scene.mNumMaterials, -1);
+  std::vector<int> mesh_material(scene.mNumMeshes, 0);
+  a.materials.push_back({"surface"});
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    has_uvs = has_uvs || (mesh.mTextureCoords[0] != nullptr && mesh.mNumVertices > 0);
+    if (mesh.mMaterialIndex >= scene.mNumMaterials || !scene.mMaterials || !scene.mMaterials[mesh.mMaterialIndex]) continue;
+    int& index = material_of_scene_material[mesh.mMaterialIndex];
+    if (index < 0) {
+      const aiMaterial& material = *scene.mMaterials[mesh.mMaterialIndex];
+      aiString name;
+      std::string text = material.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? std::string(name.C_Str()) : std::string();
+      if (text.empty() || text == AI_DEFAULT_MATERIAL_NAME) {
+        index = 0;
+      } else {
+        named = true;
+        SurfaceAppearance::Material entry{text.substr(0, 200)};
+        aiColor4D colour;
+        if (material.Get(AI_MATKEY_BASE_COLOR, colour) == AI_SUCCESS || material.Get(AI_MATKEY_COLOR_DIFFUSE, colour) == AI_SUCCESS) {
+          const Eigen::Vector3d c(colour.r, colour.g, colour.b);
+          if (c.allFinite()) entry.colour = c.cwiseMax(0.0).cwiseMin(1.0);
+        }
+        index = static_cast<int>(a.materials.size());
+        a.materials.push_back(entry);
+      }
+    }
+    mesh_material[m] = index;
+  }
+  if (!has_uvs && !named) return {};
+  const Eigen::Index n = surface.faces.rows();
+  a.corners.resize(n, 9);
+  if (has_uvs) a.uvs.setZero(n, 6);
+  a.material.reserve(static_cast<std::size_t>(n));
+  Eigen::Index f = 0;
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[m];
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    for (unsigned k = 0; k < mesh.mNumFaces; ++k) {
+      const aiFace& face = mesh.mFaces[k];
+      if (face.mNumIndices != 3) continue;
+      for (int i = 0; i < 3; ++i) {
+        const unsigned v = face.mIndices[i];
+        const aiVector3D& p = mesh.mVertices[v];
+        a.corners.row(f).segment<3>(3 * i) << p.x, p.y, p.z;
+        if (has_uvs && mesh.mTextureCoords[0]) {
+          const aiVector3D& t = mesh.mTextureCoords[0][v];
+          // A non-finite UV carries nothing to transfer: 0, as for a mesh without UVs.
+          if (std::isfinite(t.x) && std::isfinite(t.y)) a.uvs.row(f).segment<2>(2 * i) << t.x, t.y;
+        }
+      }
+      a.material.push_back(mesh_material[m]);
+      ++f;
+    }
+  }
+  a.drop_unused_materials();
+  return a;
 }
 
 }  // namespace
@@ -101,6 +167,7 @@ SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::str
     }
     v0 += mesh->mNumVertices;
   }
+  surface.appearance = appearance_of(*scene, surface);
   return surface;
 }
 

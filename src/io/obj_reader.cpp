@@ -1,10 +1,12 @@
-// Wavefront OBJ, the strict way: only `v` and `f` lines build the surface; every other statement
-// (vt, vn, vp, l, p, o, g, s, usemtl, mtllib, …) is read past, as assimp did.
+// Wavefront OBJ, the strict way: `v` and `f` lines build the surface, `vt` and `usemtl` give its
+// appearance (SurfaceAppearance); every other statement (vn, vp, l, p, o, g, s, mtllib, …) is
+// read past, as assimp did.
 
 #include "byte_cursor.hpp"
 #include "polygon_soup.hpp"
 #include "surface_readers.hpp"
 
+#include <algorithm>
 #include <vector>
 
 namespace fissure::io_detail {
@@ -12,7 +14,17 @@ namespace fissure::io_detail {
 SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
   ByteCursor c(bytes, name);
   PolygonSoup soup(name, 1);
-  std::vector<std::int64_t> face;
+  std::vector<std::int64_t> face, face_uvs;
+  // An index as written (1-based, or negative counting back from the last one defined so far)
+  // → 0-based; `what` names the kind in messages ("vertex", "texture coordinate").
+  const auto resolve = [&](std::int64_t index, std::uint64_t defined, const char* what) {
+    const std::int64_t absolute = index < 0 ? static_cast<std::int64_t>(defined) + 1 + index : index;
+    if (absolute < 1 || static_cast<std::uint64_t>(absolute) > defined) {
+      c.fail("face " + std::to_string(soup.face_count() + 1) + " references " + what + " " + std::to_string(index) +
+             ", but only " + std::to_string(defined) + " come before it");
+    }
+    return absolute;
+  };
   while (!c.at_end()) {
     const std::string_view keyword = c.line_word();
     if (keyword == "v") {
@@ -25,12 +37,42 @@ SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
         }
       }
       soup.add_vertex(c, xyz[0], xyz[1], xyz[2]);
+    } else if (keyword == "vt") {
+      // "vt u [v [w]]": v defaults to 0, w is not used.
+      double uv[2] = {0.0, 0.0};
+      for (int k = 0; k < 2; ++k) {
+        const std::string_view w = c.line_word();
+        if (w.empty()) {
+          if (k == 0) c.fail("texture coordinate " + std::to_string(soup.uv_count() + 1) + " has no value");
+          break;
+        }
+        if (!parse_double(w, uv[k])) {
+          c.fail("texture coordinate " + std::to_string(soup.uv_count() + 1) + ": '" + std::string(w.substr(0, 40)) + "' is not a number");
+        }
+      }
+      soup.add_uv(c, uv[0], uv[1]);
+    } else if (keyword == "usemtl") {
+      const std::string_view name = c.line_word();
+      if (name.empty()) c.fail("usemtl names no material");
+      soup.use_material(name.substr(0, 200));
     } else if (keyword == "f") {
       face.clear();
+      face_uvs.clear();
       for (std::string_view w = c.line_word(); !w.empty(); w = c.line_word()) {
         if (w[0] == '#') break;
         // "v", "v/vt", "v//vn" or "v/vt/vn": the vertex comes first.
-        const std::string_view vertex = w.substr(0, w.find('/'));
+        const std::size_t slash = w.find('/');
+        const std::string_view vertex = w.substr(0, slash);
+        const std::string_view uv = slash == std::string_view::npos ? std::string_view() : w.substr(slash + 1, w.find('/', slash + 1) - slash - 1);
+        if (uv.empty()) {
+          face_uvs.push_back(-1);
+        } else {
+          std::int64_t uv_index;
+          if (!parse_integer(uv, uv_index) || uv_index == 0) {
+            c.fail("face " + std::to_string(soup.face_count() + 1) + ": '" + std::string(w.substr(0, 40)) + "' is not a texture coordinate reference");
+          }
+          face_uvs.push_back(resolve(uv_index, soup.uv_count(), "texture coordinate") - 1);
+        }
         std::int64_t index;
         if (!parse_integer(vertex, index) || index == 0) {
           c.fail("face " + std::to_string(soup.face_count() + 1) + ": '" + std::string(w.substr(0, 40)) + "' is not a vertex reference");
@@ -46,7 +88,8 @@ SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
         }
         face.push_back(index);
       }
-      soup.add_face(c, face);
+      const bool any_uv = std::any_of(face_uvs.begin(), face_uvs.end(), [](std::int64_t k) { return k >= 0; });
+      soup.add_face(c, face, any_uv ? std::span<const std::int64_t>(face_uvs) : std::span<const std::int64_t>());
     }
     c.next_line();
   }

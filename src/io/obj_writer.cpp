@@ -9,6 +9,18 @@
 #include <vector>
 
 namespace fissure::io_detail {
+namespace {
+
+// OBJ and MTL statements are lines of words: a name (from an imported glTF, say) with blanks or
+// control characters would end its statement early or start another. They become '_'.
+std::string obj_name(const std::string& name) {
+  std::string out = name.empty() ? std::string("unnamed") : name;
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) <= ' ' || c == 0x7f) c = '_';
+  return out;
+}
+
+}  // namespace
 
 std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
   std::string out = "# Fissure: " + std::to_string(scene.parts.size()) + " parts, metres\n";
@@ -17,7 +29,7 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
   // vertices were split at UV seams reads back as one welded, closed surface with no merging.
   long long position_base = 0, uv_base = 0;  // OBJ indices are 1-based and global
   for (const ExportPart& part : scene.parts) {
-    out += "o " + part.name + "\n";
+    out += "o " + obj_name(part.name) + "\n";
     // Extras as comments, one line: OBJ has no place for them.
     out += "# extras " + nlohmann::json::parse(part.extras_json).dump() + "\n";
     std::map<std::array<double, 3>, long long> position_index;
@@ -35,7 +47,7 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
       bool used = false;
       for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) {
         if (part.triangle_material[static_cast<std::size_t>(t)] != static_cast<int>(m)) continue;
-        if (!used) out += "usemtl " + scene.materials[m].name + "\n";
+        if (!used) out += "usemtl " + obj_name(scene.materials[m].name) + "\n";
         used = true;
         out += "f";
         for (int i = 0; i < 3; ++i) {
@@ -55,7 +67,7 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
 std::string encode_mtl(const ExportScene& scene) {
   std::string out = "# Fissure\n";
   for (const ExportMaterial& m : scene.materials) {
-    out += "newmtl " + m.name + "\n";
+    out += "newmtl " + obj_name(m.name) + "\n";
     out += "Kd " + exact_number(m.colour.x()) + " " + exact_number(m.colour.y()) + " " + exact_number(m.colour.z()) + "\n";
     out += "Ka 0 0 0\nKs 0 0 0\nd 1\nillum 1\n";
   }

@@ -4,6 +4,7 @@
 
 #include "fissure/base/memory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -38,7 +39,21 @@ void PolygonSoup::add_vertex(const ByteCursor& at, double x, double y, double z)
   m_xyz.insert(m_xyz.end(), {x, y, z});
 }
 
-void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> indices) {
+void PolygonSoup::add_uv(const ByteCursor& at, double u, double v) {
+  if (!std::isfinite(u) || !std::isfinite(v)) {
+    throw IoError(at.where() + "texture coordinate " + std::to_string(uv_count() + 1) + " is not finite");
+  }
+  m_uv.insert(m_uv.end(), {u, v});
+}
+
+void PolygonSoup::use_material(std::string_view name) {
+  const auto it = std::find(m_materials.begin(), m_materials.end(), name);
+  m_material = static_cast<int>(it - m_materials.begin());
+  if (it == m_materials.end()) m_materials.emplace_back(name);
+  m_has_appearance = true;
+}
+
+void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> indices, std::span<const std::int64_t> uv_indices) {
   const std::uint64_t number = ++m_faces_read;
   if (indices.size() < 3) {
     throw IoError(at.where() + "face " + std::to_string(number) + " has " + std::to_string(indices.size()) +
@@ -61,12 +76,33 @@ void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> i
     known = known && static_cast<std::uint64_t>(index) < vertex_count();
   }
   if (known) {
+    const std::size_t first = m_triangles.size();
     triangulate(m_scratch, number);
+    if (!uv_indices.empty() || m_has_appearance) record_appearance(first, uv_indices);
   } else {
     m_pending.insert(m_pending.end(), m_scratch.begin(), m_scratch.end());
     m_pending_end.push_back(m_pending.size());
     m_pending_number.push_back(number);
   }
+}
+
+void PolygonSoup::record_appearance(std::size_t first, std::span<const std::int64_t> uv_indices) {
+  const std::size_t before = first / 3, after = m_triangles.size() / 3;
+  // Triangles of earlier faces had no uvs and material 0.
+  if (!uv_indices.empty() && !m_has_uvs) {
+    m_triangle_uv.assign(3 * before, -1);
+    m_has_uvs = true;
+  }
+  if (m_has_uvs) {
+    for (std::size_t k = first; k < m_triangles.size(); ++k) {
+      // The triangle's corner is one of the face's vertices: its uv is that vertex's.
+      const auto at = std::find(m_scratch.begin(), m_scratch.end(), m_triangles[k]) - m_scratch.begin();
+      m_triangle_uv.push_back(uv_indices.empty() ? -1 : static_cast<int>(uv_indices[static_cast<std::size_t>(at)]));
+    }
+  }
+  m_triangle_material.resize(before, 0);
+  m_triangle_material.resize(after, m_material);
+  m_has_appearance = true;
 }
 
 void PolygonSoup::triangulate(std::span<const int> face, std::uint64_t number) {
@@ -107,6 +143,26 @@ SurfaceMesh PolygonSoup::finish(const char* format) {
   surface.faces.resize(static_cast<Eigen::Index>(m_triangles.size() / 3), 3);
   for (Eigen::Index f = 0; f < surface.faces.rows(); ++f) {
     for (int k = 0; k < 3; ++k) surface.faces(f, k) = m_triangles[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k)];
+  }
+  if (m_has_appearance) {
+    SurfaceAppearance& a = surface.appearance;
+    const Eigen::Index n = surface.faces.rows();
+    for (const std::string& name : m_materials) a.materials.push_back({name});
+    a.corners.resize(n, 9);
+    for (Eigen::Index f = 0; f < n; ++f)
+      for (int k = 0; k < 3; ++k) a.corners.row(f).segment<3>(3 * k) = surface.vertices.row(surface.faces(f, k));
+    if (m_has_uvs) {
+      m_triangle_uv.resize(3 * static_cast<std::size_t>(n), -1);
+      a.uvs.setZero(n, 6);
+      for (Eigen::Index f = 0; f < n; ++f)
+        for (int k = 0; k < 3; ++k) {
+          const int uv = m_triangle_uv[3 * static_cast<std::size_t>(f) + static_cast<std::size_t>(k)];
+          if (uv >= 0) a.uvs.row(f).segment<2>(2 * k) << m_uv[2 * static_cast<std::size_t>(uv)], m_uv[2 * static_cast<std::size_t>(uv) + 1];
+        }
+    }
+    m_triangle_material.resize(static_cast<std::size_t>(n), 0);
+    a.material = std::move(m_triangle_material);
+    a.drop_unused_materials();
   }
   return surface;
 }

@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace fissure::io_detail {
@@ -39,8 +40,17 @@ public:
 
   /// Adds face number face_count() + 1 with vertex indices as the file writes them. Throws
   /// IoError naming the face when it has fewer than 3 vertices or an index that is not one of
-  /// the file's vertices (the declared count, else the vertices added so far).
-  void add_face(const ByteCursor& at, std::span<const std::int64_t> indices);
+  /// the file's vertices (the declared count, else the vertices added so far). `uv_indices`,
+  /// empty or one per vertex: 0-based indices of texture coordinates added so far (−1: none).
+  void add_face(const ByteCursor& at, std::span<const std::int64_t> indices, std::span<const std::int64_t> uv_indices = {});
+
+  /// Texture coordinate number uv_count() + 1 (OBJ's `vt`). Throws IoError naming it when a
+  /// value is not finite.
+  void add_uv(const ByteCursor& at, double u, double v);
+  std::uint64_t uv_count() const { return m_uv.size() / 2; }
+
+  /// The faces added from now on use the material `name` (OBJ's `usemtl`).
+  void use_material(std::string_view name);
 
   /// The triangle surface (not yet repaired); source_name is the file's name. Throws
   /// InvalidInput when no face was read (`format`, e.g. "an OBJ file", completes the message).
@@ -48,6 +58,8 @@ public:
 
 private:
   void triangulate(std::span<const int> face, std::uint64_t number);
+  // The uvs and material of the triangles from m_triangles[first] on (the face in m_scratch).
+  void record_appearance(std::size_t first, std::span<const std::int64_t> uv_indices);
 
   std::string m_name;
   int m_index_base;
@@ -61,6 +73,15 @@ private:
   std::vector<std::size_t> m_pending_end;  // end of each pending face in m_pending
   std::vector<std::uint64_t> m_pending_number;
   std::vector<int> m_scratch;
+  // Appearance (OBJ): texture coordinates, and per triangle its corners' uv indices (−1: none)
+  // and its material; faces before the first `usemtl` use material 0, named "surface".
+  std::vector<double> m_uv;                 // 2 per texture coordinate
+  std::vector<int> m_triangle_uv;           // 3 per triangle, once a face has uvs (m_has_uvs)
+  std::vector<int> m_triangle_material;     // 1 per triangle, only once a material is used
+  std::vector<std::string> m_materials{"surface"};
+  int m_material = 0;
+  bool m_has_appearance = false;
+  bool m_has_uvs = false;
 };
 
 }  // namespace fissure::io_detail

@@ -26,4 +26,17 @@ double surface_area(const SurfaceMesh& surface) {
   return twice_area / 2.0;
 }
 
+void SurfaceAppearance::drop_unused_materials() {
+  std::vector<int> renumbered(materials.size(), -1);
+  for (const int m : material) renumbered[static_cast<std::size_t>(m)] = 0;
+  std::vector<Material> kept;
+  for (std::size_t m = 0; m < materials.size(); ++m) {
+    if (renumbered[m] < 0) continue;
+    renumbered[m] = static_cast<int>(kept.size());
+    kept.push_back(std::move(materials[m]));
+  }
+  for (int& m : material) m = renumbered[static_cast<std::size_t>(m)];
+  materials = std::move(kept);
+}
+
 }  // namespace fissure

@@ -128,6 +128,7 @@ SurfaceMesh repair_surface(const SurfaceMesh& input, SurfaceRepairReport& report
     if (slot == 0) slot = used++;
   SurfaceMesh out;
   out.source_name = input.source_name;
+  out.appearance = input.appearance;
   out.vertices.resize(used, 3);
   for (Eigen::Index i = 0; i < input.vertex_count(); ++i) {
     if (new_index[static_cast<std::size_t>(i)] >= 0) out.vertices.row(new_index[static_cast<std::size_t>(i)]) = input.vertices.row(i);

@@ -207,6 +207,82 @@ TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
   EXPECT_NEAR(mass, 0.4 * 0.4 * 0.03 * 2400.0, 1e-6);  // ceramic-tile's density, kg/m³
 }
 
+// A box as a modeller exports it: one material per face and a different linear UV map on
+// each. The fragments' outer faces keep the material of the face they lie on and its UVs, in
+// the OBJ and the GLB, as assimp reads them back.
+TEST_F(FractureCli, OuterFacesKeepTheInputsMaterialsAndUVs) {
+  struct Face {
+    const char* name;
+    int axis;      // the face's normal axis
+    double side;   // its coordinate on that axis
+    std::array<int, 4> corners;  // vertex numbers from 1: bit 2 → +x, bit 1 → +y, bit 0 → +z
+    std::function<std::array<double, 2>(const std::array<double, 3>&)> uv;
+  };
+  const std::vector<Face> faces = {
+      {"top", 2, 0.015, {1, 5, 7, 3}, [](const auto& p) { return std::array{2 * p[0] + 0.1, 3 * p[1] - 0.2}; }},
+      {"bottom", 2, -0.015, {0, 2, 6, 4}, [](const auto& p) { return std::array{p[0], -p[1]}; }},
+      {"px", 0, 0.2, {4, 6, 7, 5}, [](const auto& p) { return std::array{p[1], 5 * p[2]}; }},
+      {"nx", 0, -0.2, {0, 1, 3, 2}, [](const auto& p) { return std::array{-p[1], 5 * p[2]}; }},
+      {"py", 1, 0.2, {2, 3, 7, 6}, [](const auto& p) { return std::array{p[0] + 1, p[2]}; }},
+      {"ny", 1, -0.2, {0, 4, 5, 1}, [](const auto& p) { return std::array{p[0] - 1, p[2]}; }}};
+  const auto corner = [](int i) {
+    return std::array<double, 3>{(i & 4) ? 0.2 : -0.2, (i & 2) ? 0.2 : -0.2, (i & 1) ? 0.015 : -0.015};
+  };
+  std::string obj;
+  for (int i = 0; i < 8; ++i) obj += "v " + std::to_string(corner(i)[0]) + " " + std::to_string(corner(i)[1]) + " " + std::to_string(corner(i)[2]) + "\n";
+  int uvs = 0;
+  for (const Face& f : faces) {
+    std::string line = "usemtl " + std::string(f.name) + "\nf";
+    for (int c : f.corners) {
+      const auto uv = f.uv(corner(c));
+      obj += "vt " + std::to_string(uv[0]) + " " + std::to_string(uv[1]) + "\n";
+      line += " " + std::to_string(c + 1) + "/" + std::to_string(++uvs);
+    }
+    obj += line + "\n";
+  }
+  write_file_atomically(path("box.obj"), obj);
+
+  for (const char* name : {"box-f.obj", "box-f.glb"}) {
+    SCOPED_TRACE(name);
+    const auto r = test::run_command(fissure() + " fracture " + path("box.obj") + " --tets 3000 -q -o " + path(name));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path(name), 0);
+    ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+    std::set<std::string> materials;
+    int checked = 0;
+    const std::function<void(const aiNode*, aiMatrix4x4)> walk = [&](const aiNode* node, aiMatrix4x4 parent) {
+      const aiMatrix4x4 world = parent * node->mTransformation;
+      for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+        const aiMesh* m = scene->mMeshes[node->mMeshes[k]];
+        const std::string material = scene->mMaterials[m->mMaterialIndex]->GetName().C_Str();
+        materials.insert(material);
+        const auto face = std::find_if(faces.begin(), faces.end(), [&](const Face& f) { return material == f.name; });
+        if (face == faces.end()) continue;  // the crack's
+        ASSERT_TRUE(m->HasTextureCoords(0));
+        // The vertices its triangles use (a GLB's primitives share their fragment's vertices).
+        std::set<unsigned> used;
+        for (unsigned t = 0; t < m->mNumFaces; ++t) used.insert(m->mFaces[t].mIndices, m->mFaces[t].mIndices + m->mFaces[t].mNumIndices);
+        for (const unsigned v : used) {
+          const aiVector3D x = world * m->mVertices[v];
+          const std::array<double, 3> p{x.x, x.y, x.z};
+          // On its own face, to float32's resolution of the coordinates (~3e-8 m).
+          ASSERT_NEAR(p[static_cast<std::size_t>(face->axis)], face->side, 1e-6) << material;
+          // The face's UV map, to float32's resolution of positions and UVs (the maps' slopes ≤ 5).
+          const auto uv = face->uv(p);
+          EXPECT_NEAR(m->mTextureCoords[0][v].x, uv[0], 1e-5) << material;
+          EXPECT_NEAR(m->mTextureCoords[0][v].y, uv[1], 1e-5) << material;
+          ++checked;
+        }
+      }
+      for (unsigned c = 0; c < node->mNumChildren; ++c) walk(node->mChildren[c], world);
+    };
+    walk(scene->mRootNode, aiMatrix4x4());
+    EXPECT_EQ(materials, (std::set<std::string>{"top", "bottom", "px", "nx", "py", "ny", "crack"}));
+    EXPECT_GT(checked, 100);
+  }
+}
+
 // Same seed, same bytes in every format, at 1 and 2 threads.
 TEST_F(FractureCli, FragmentExportsAreTheSameBytesAtOneAndTwoThreads) {
   for (const char* name : {"d.glb", "d.gltf", "d.obj", "d.ply"}) {

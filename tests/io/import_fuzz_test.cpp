@@ -221,6 +221,7 @@ TEST(ImportFuzz, FissureReadersNeverCrash) {
   const test::Polygons polygons = test::l_prism_polygons();
   const std::vector<Corpus> corpora = {
       {"OBJ", test::to_obj(polygons), false, dir / "f.obj", dir / "f.obj"},
+      {"textured OBJ", test::to_obj_textured(polygons), false, dir / "t.obj", dir / "t.obj"},
       {"OFF", test::to_off(polygons), false, dir / "f.off", dir / "f.off"},
       {"ASCII PLY", test::to_ply(polygons), false, dir / "f.ply", dir / "f.ply"},
       {"binary PLY (LE)", test::to_ply_binary(polygons, false), true, dir / "le.ply", dir / "le.ply"},

@@ -178,6 +178,20 @@ TEST_F(SceneExport, PlyHoldsEveryPartTaggedByIndex) {
   EXPECT_NE(text.find("comment material 1 crack\n"), std::string::npos);
 }
 
+// Names come from imported files (a glTF material "Old Stone"): in OBJ and MTL, whose
+// statements are words, blanks and control characters become '_'; glTF keeps them as given.
+TEST_F(SceneExport, NamesWithBlanksStayOneWordInObj) {
+  ExportScene s = two_cubes();
+  s.materials[0].name = "Old Stone\nnewmtl x";
+  s.parts[0].name = "part one";
+  const std::string obj = encode_scene(s, SceneFormat::Obj, "x.mtl"), mtl = encode_obj_materials(s);
+  EXPECT_NE(obj.find("\nusemtl Old_Stone_newmtl_x\n"), std::string::npos) << obj.substr(0, 300);
+  EXPECT_NE(obj.find("\no part_one\n"), std::string::npos);
+  EXPECT_NE(mtl.find("\nnewmtl Old_Stone_newmtl_x\n"), std::string::npos) << mtl;
+  EXPECT_EQ(mtl.find("\nnewmtl x\n"), std::string::npos) << mtl;
+  EXPECT_NE(encode_scene(s, SceneFormat::Gltf).find("Old Stone\\nnewmtl x"), std::string::npos);
+}
+
 TEST_F(SceneExport, SameSceneSameBytes) {
   for (SceneFormat f : {SceneFormat::Glb, SceneFormat::Gltf, SceneFormat::Obj, SceneFormat::Ply})
     EXPECT_EQ(encode_scene(two_cubes(), f, "x.mtl"), encode_scene(two_cubes(), f, "x.mtl"));

@@ -67,6 +67,22 @@ inline std::string to_obj(const Polygons& p) {
   return out.str();
 }
 
+// An OBJ as a modeller writes a textured, multi-material one: a `vt` per vertex (its x and y),
+// faces "v/vt/vn", and `usemtl` switching between two materials face by face.
+inline std::string to_obj_textured(const Polygons& p) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "# written by the Fissure tests\nmtllib solid.mtl\no solid\n";
+  for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) out << "v " << p.vertices(v, 0) << ' ' << p.vertices(v, 1) << ' ' << p.vertices(v, 2) << '\n';
+  for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) out << "vt " << p.vertices(v, 0) << ' ' << p.vertices(v, 1) << '\n';
+  for (std::size_t k = 0; k < p.faces.size(); ++k) {
+    out << "usemtl " << (k % 2 ? "stone" : "grout") << "\nf";
+    for (int v : p.faces[k]) out << ' ' << v + 1 << '/' << v + 1 << '/' << v + 1;
+    out << '\n';
+  }
+  return out.str();
+}
+
 // The vertex and face lines OFF and ASCII PLY share: "x y z" rows, then "n v0 v1 …" rows.
 inline void write_vertex_and_face_lines(std::ostream& out, const Polygons& p) {
   for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) out << p.vertices(v, 0) << ' ' << p.vertices(v, 1) << ' ' << p.vertices(v, 2) << '\n';

@@ -323,6 +323,92 @@ TEST(SurfaceImport, FaceWithAMissingVertexIsNamed) {
   }
 }
 
+// Materials and texture coordinates: an OBJ's `usemtl` and `vt` (one quad per material, a
+// triangle fan, a relative vt index), and the same file through assimp's glTF export and our
+// glTF import. The appearance is the file's triangles before repair, each with its material and
+// its corners' UVs.
+TEST(SurfaceImport, MaterialsAndUVsAreKeptAsTheAppearance) {
+  const fs::path dir = test::fresh_temp_dir("import-appearance");
+  // A tetrahedron whose base is split into two triangles of its own material.
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 0.5 0.5 0\n"
+      "vt 0 0\nvt 1 0\nvt 0 1\nvt 0.25 0.75\n"
+      "f 1 3 2\n"                  // before any usemtl, no uvs: material "surface"
+      "usemtl side\nf 1/1 2/2 4/3\nf 1/1 4/3 3/-2\nf 2/2 3/3 4/4\n"
+      "usemtl base\n";
+  write_file_atomically(dir / "t.obj", obj);
+  SurfaceRepairReport report;
+  const SurfaceMesh s = import_surface(dir / "t.obj", report);
+  const SurfaceAppearance& a = s.appearance;
+  ASSERT_EQ(a.corners.rows(), 4);
+  ASSERT_TRUE(a.has_uvs());
+  ASSERT_EQ(a.materials.size(), 2u);  // "base" names no face: dropped
+  EXPECT_EQ(a.materials[0].name, "surface");
+  EXPECT_EQ(a.materials[1].name, "side");
+  EXPECT_EQ(a.material, (std::vector<int>{0, 1, 1, 1}));
+  EXPECT_EQ(a.uvs.row(0), Eigen::RowVectorXd::Zero(6)) << "no vt: zero";
+  EXPECT_EQ(a.uvs.row(2), (Eigen::Matrix<double, 1, 6>() << 0, 0, 0, 1, 0, 1).finished()) << "vt -2 is the third of four";
+  EXPECT_EQ(a.corners.row(3), (Eigen::Matrix<double, 1, 9>() << 1, 0, 0, 0, 1, 0, 0, 0, 1).finished());
+  EXPECT_EQ(a.uvs.row(3), (Eigen::Matrix<double, 1, 6>() << 1, 0, 0, 1, 0.25, 0.75).finished());
+
+  // The OBJ without materials or UVs has no appearance.
+  write_file_atomically(dir / "plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  EXPECT_TRUE(import_surface(dir / "plain.obj", report).appearance.empty());
+
+  // Through glTF (assimp's exporter, V flipped to glTF's convention and back by its importer).
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile((dir / "t.obj").string(), 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  Assimp::Exporter exporter;
+  ASSERT_EQ(exporter.Export(scene, "glb2", (dir / "t.glb").string()), AI_SUCCESS) << exporter.GetErrorString();
+  const SurfaceAppearance g = import_surface(dir / "t.glb", report).appearance;
+  ASSERT_EQ(g.corners.rows(), 4);
+  ASSERT_TRUE(g.has_uvs());
+  std::vector<std::string> names;
+  for (const auto& m : g.materials) names.push_back(m.name);
+  EXPECT_NE(std::find(names.begin(), names.end(), "side"), names.end());
+  // The side triangle (1, 0, 0), (0, 1, 0), (0, 0, 1) keeps its corners' UVs, in some order.
+  bool found = false;
+  for (Eigen::Index t = 0; t < g.corners.rows(); ++t) {
+    int apex = -1;
+    double height = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      height += g.corners(t, 3 * k) + g.corners(t, 3 * k + 1) + g.corners(t, 3 * k + 2);
+      if (g.corners(t, 3 * k + 2) > 0.5) apex = k;
+    }
+    if (apex < 0 || std::abs(height - 3.0) > 1e-6) continue;  // not on the plane x + y + z = 1
+    EXPECT_NEAR(g.uvs(t, 2 * apex), 0.25, 1e-6);
+    EXPECT_NEAR(g.uvs(t, 2 * apex + 1), 0.75, 1e-6);
+    found = true;
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(SurfaceImport, BadTextureCoordinatesAreNamed) {
+  const fs::path dir = test::fresh_temp_dir("import-bad-uv");
+  const std::string tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
+  const struct {
+    const char* file;
+    std::string bytes;
+    const char* words;
+  } cases[] = {
+      {"past.obj", tet + "vt 0 0\nf 1/2 3/1 2/1\n", "past.obj:6: face 1 references texture coordinate 2, but only 1 come before it"},
+      {"back.obj", tet + "vt 0 0\nf 1/-3 3/1 2/1\n", "face 1 references texture coordinate -3, but only 1 come before it"},
+      {"word.obj", tet + "vt 0 0\nf 1/x 3/1 2/1\n", "face 1: '1/x' is not a texture coordinate reference"},
+      {"nan.obj", tet + "vt nan 0\n", "nan.obj:5: texture coordinate 1 is not finite"},
+      {"empty.obj", tet + "vt\n", "texture coordinate 1 has no value"},
+      {"text.obj", tet + "vt 0 zero\n", "texture coordinate 1: 'zero' is not a number"},
+      {"nameless.obj", tet + "usemtl\n", "usemtl names no material"},
+  };
+  for (const auto& c : cases) {
+    const fs::path path = dir / c.file;
+    write_file_atomically(path, c.bytes);
+    const std::string e = import_error(path);
+    EXPECT_EQ(e.rfind("IoError: " + path.string() + ":", 0), 0u) << e;
+    EXPECT_NE(e.find(c.words), std::string::npos) << e;
+  }
+}
+
 // Byte ranges assimp 5.2.5 trusts in a glTF 2.0 file. On 0565c28 each of these hand-made
 // triangles was handed to assimp, which read outside its buffer: AddressSanitizer reported a
 // heap-buffer-overflow in Importer::ReadFile (the first is the fuzzed file it caught, an accessor
