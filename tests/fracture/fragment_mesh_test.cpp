@@ -335,12 +335,9 @@ TEST(FragmentMesh, CurvedThinWalledBodiesGiveClosedFragmentsOnTheInputSurface) {
     }
     // The issue's bounds: the tet mesh's volume to 1e-9, the input's to 1 %.
     EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume());
-    // Known gap (issue 11): the torus's tet mesh holds 98.9 % of what its surface encloses at 23K
-    // tets (97.3 % at 6K), because the mesher lets boundary facets sit up to a quarter of the size
-    // bound inside a curved surface. A facet-distance bound of 0.02 of the thickness 2V/A brings
-    // it to 99.06 % at the same count but changes which thin bodies the mesher accepts; until that
-    // lands the torus is held to 2 %, the bowl to the issue's 1 %.
-    const double input_bound = body.name == "torus" ? 0.02 : 0.01;
+    // The issue's 1 %: the torus's fragments hold 99.06 % of what its surface encloses at 23K
+    // tets (98.9 % before the mesher's facet distance was bounded by 0.02 of the thickness 2V/A).
+    const double input_bound = 0.01;
     EXPECT_NEAR(total, signed_volume(body.surface), input_bound * signed_volume(body.surface));
     // Hausdorff distance between the outer faces and the input surface ≤ 0.5 % of the diagonal,
     // both ways (outer vertices and centroids to the input; input vertices to the outer faces).

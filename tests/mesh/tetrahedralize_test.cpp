@@ -533,7 +533,10 @@ TEST(Tetrahedralize, ThinFinIsRemeshedUntilFilledOrRefused) {
   } catch (const NumericalFailure& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("block with fin: after 3 attempts"), std::string::npos) << what;
-    EXPECT_NE(what.find("instead of 8.04 m^2"), std::string::npos) << what;
+    // The missing part of the fin: by volume (the facet-distance bound keeps the volume
+    // tolerance below the fin's deficit), or by area where that tolerance is wider.
+    EXPECT_TRUE(what.find("instead of 1.02 m^3") != std::string::npos || what.find("instead of 8.04 m^2") != std::string::npos)
+        << what;
     EXPECT_NE(what.find("more than 10 times the 2000 asked for"), std::string::npos) << what;
   }
 }
