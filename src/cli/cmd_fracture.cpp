@@ -182,7 +182,11 @@ int run_fracture(const FractureArgs& args) {
     SimulationOptions options;
     options.progress = &progress;
     options.cancel = &interrupt_token();
-    if (args.fragments > 0) {
+    if (args.fragments > 0 && !args.output.empty()) {
+      // The meshes are what is written: their count is the one aimed at.
+      target = simulate_to_fragment_mesh_count(prepared->fracture_body(), params, initial, resistance, args.seed,
+                                               static_cast<int>(std::lround(args.fragments)), thread_count(), options);
+    } else if (args.fragments > 0) {
       target = simulate_to_fragment_count(prepared->fracture_body(), params, initial, resistance, args.seed,
                                           static_cast<int>(std::lround(args.fragments)), options);
     } else {
@@ -190,7 +194,7 @@ int run_fracture(const FractureArgs& args) {
       target.age = target.result.simulated_age;
       target.reached = true;
     }
-    simulation_s = clock.milliseconds() / 1e3 - preparation_s;
+    simulation_s = clock.milliseconds() / 1e3 - preparation_s - target.meshing_seconds;
   }
   throw_if_interrupted();
   const FractureResult& result = target.result;
@@ -210,8 +214,9 @@ int run_fracture(const FractureArgs& args) {
     progress.stage("meshing the fragments");
     Stopwatch meshing;
     const std::vector<FragmentMesh> fragments =
-        mesh_fragments(*mesh, result.cracks, static_cast<int>(result.cracks.size()), thread_count());
-    meshing_s = meshing.milliseconds() / 1e3;
+        target.meshings > 0 ? std::move(target.meshes)
+                            : mesh_fragments(*mesh, result.cracks, static_cast<int>(result.cracks.size()), thread_count());
+    meshing_s = target.meshings > 0 ? target.meshing_seconds : meshing.milliseconds() / 1e3;
     fragment_meshes = fragments.size();
     progress.stage("writing " + args.output);
     Stopwatch exporting;
@@ -232,6 +237,7 @@ int run_fracture(const FractureArgs& args) {
   if (args.fragments > 0) fracture["fragments_requested"] = std::lround(args.fragments);
   // The closed meshes' own count: exact where the labeller probes seven points per face.
   if (!args.output.empty()) fracture["fragment_meshes"] = fragment_meshes;
+  if (target.meshings > 0) fracture["fragment_meshings"] = target.meshings;  // --fragments counted meshes
 
   progress.stage("writing");
   if (!args.stats.empty()) {
@@ -324,7 +330,7 @@ void register_fracture(CLI::App& app, Action& action) {
   cmd->add_flag("--free", args->free_body, "Hold nothing: the load is balanced by inertia (inertia relief)");
   cmd->add_option("--up", args->up, "Up axis (+x, -y, … or x,y,z); default: +y for glTF/FBX/DAE, else +z");
   cmd->add_option("--view", args->view, "Direction the visible face looks along (default: up)");
-  cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age")
+  cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age; with -o, N closed meshes")
       ->type_name("INT")
       ->check(count_in(1, 1e6));
   cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->default_val(1);

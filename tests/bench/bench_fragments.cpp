@@ -114,10 +114,8 @@ BENCHMARK(BM_EncodeScene)
     ->Unit(benchmark::kMillisecond);
 
 // The crack count that gives about `pieces` closed meshes on the body of `tets`, found once (not
-// timed): the labeller's count runs ahead of the exact meshes' on dense patterns (docs/fragments.md),
-// so simulate_to_fragment_count aims at twice the pieces, and a bisection over the cracks' prefix
-// (the simulation is causal: an earlier state is a prefix of a later one) on the meshes' count
-// finds the first prefix with at least `pieces`.
+// timed) by simulate_to_fragment_mesh_count, which aims at the meshes' own count (the labeller's
+// runs ahead of it on dense patterns, docs/fragments.md).
 struct RaceCase {
   int cracks = 0;
   double search_s = 0.0;
@@ -129,18 +127,10 @@ const RaceCase& race_case(int pieces, int tets) {
   if (it != cases.end()) return it->second;
   const Body& b = body(tets);
   const auto t0 = std::chrono::steady_clock::now();
-  const FragmentTargetResult r =
-      simulate_to_fragment_count(b.prepared->fracture_body(), params(), b.initial, b.resistance, 1, 2 * pieces);
-  const auto count = [&](int k) {
-    return static_cast<int>(mesh_fragments(*b.mesh, r.result.cracks, k, thread_count()).size());
-  };
-  int low = 0, high = crack_count(r.result);
-  while (high - low > 1) {
-    const int mid = (low + high) / 2;
-    (count(mid) >= pieces ? high : low) = mid;
-  }
+  const FragmentTargetResult r = simulate_to_fragment_mesh_count(b.prepared->fracture_body(), params(), b.initial,
+                                                                 b.resistance, 1, pieces, thread_count());
   RaceCase c;
-  c.cracks = high;
+  c.cracks = crack_count(r.result);
   c.search_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return cases.emplace(std::make_pair(pieces, tets), c).first->second;
 }

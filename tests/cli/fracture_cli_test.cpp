@@ -110,6 +110,16 @@ TEST_F(FractureCli, FragmentsReachesAboutTheCountAsked) {
   const auto f = nlohmann::json::parse(read_file(path("n.json"))).at("fracture");
   EXPECT_NEAR(f.at("fragments").get<int>(), 8, 8 * 0.2) << f.dump();
   EXPECT_EQ(f.at("fragments_requested"), 8);
+
+  // With -o the closed meshes are counted: on this tile at N = 150 the labeller's state (its
+  // count 150) has fewer than 120 meshes, and the search on the meshes' own count reaches N.
+  const auto o = test::run_command(fissure() + " fracture " + mesh() + " -q --fragments 150 -o " + path("n.glb") +
+                                   " --stats " + path("n.json"));
+  ASSERT_EQ(o.exit_code, 0) << o.output;
+  EXPECT_EQ(o.output.find("warning"), std::string::npos) << o.output;
+  const auto g = nlohmann::json::parse(read_file(path("n.json"))).at("fracture");
+  EXPECT_NEAR(g.at("fragment_meshes").get<int>(), 150, 150 * 0.2) << g.dump();
+  EXPECT_GT(g.at("fragment_meshings").get<int>(), 1) << "the labeller's state was close: the case no longer tests the search";
 }
 
 // Issue 10: "with no flags at all, tiles from 0.3 m to 1 m and curved bodies (a bowl, a basin)
