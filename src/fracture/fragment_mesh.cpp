@@ -72,9 +72,13 @@ Polygon intersect(const Polygon& a, const Polygon& b_across) {
   return out.size() >= 3 ? out : Polygon{};
 }
 
-// Whether the boxes of two polygons are apart along an axis: then they share no area, and
-// intersect() (most of the pairs meshing tries) need not run.
-bool boxes_apart(const Polygon& a, const Polygon& b) {
+// Whether the boxes of two polygons are apart along an axis by more than `slack`: then they
+// share no area, and intersect() (most of the pairs meshing tries) need not run. The slack
+// matters: two faces on one plane agree only to round-off where their corners are not the
+// canonical crossings (a point where two cracks meet on a tet face is clipped in each tet), so
+// on the face z = 0.01 of a tile one had every z one ulp above the other's, and without slack
+// the pieces were never joined (a cell of three crack faces left open beside a hole).
+bool boxes_apart(const Polygon& a, const Polygon& b, double slack) {
   Eigen::Vector3d a_low = a[0], a_high = a[0], b_low = b[0], b_high = b[0];
   for (const auto& x : a) {
     a_low = a_low.cwiseMin(x);
@@ -84,7 +88,7 @@ bool boxes_apart(const Polygon& a, const Polygon& b) {
     b_low = b_low.cwiseMin(x);
     b_high = b_high.cwiseMax(x);
   }
-  return (a_high.array() < b_low.array()).any() || (b_high.array() < a_low.array()).any();
+  return (a_high.array() + slack < b_low.array()).any() || (b_high.array() + slack < a_low.array()).any();
 }
 
 const PieceFace* face_on(const TetPiece& piece, PieceFaceKind kind, int index) {
@@ -127,6 +131,38 @@ private:
   std::vector<Eigen::Vector3d> m_points;
 };
 
+// The triangles round an edge used by more than two, paired: each with the one next to it round
+// the edge on its solid side (the two bound one solid wedge).
+std::vector<std::pair<int, int>> wedge_pairs(const std::vector<Eigen::Vector3d>& vertices, const std::vector<Eigen::Vector3i>& triangles,
+                                             std::pair<int, int> edge, const std::vector<int>& ts) {
+  const Eigen::Vector3d a = vertices[static_cast<std::size_t>(edge.first)];
+  const Eigen::Vector3d u = (vertices[static_cast<std::size_t>(edge.second)] - a).normalized();
+  const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  struct Around {
+    double angle;
+    int triangle;
+    bool inner_ahead;  // its solid side lies toward increasing angle
+  };
+  std::vector<Around> order;
+  for (int t : ts) {
+    const auto& tri = triangles[static_cast<std::size_t>(t)];
+    int c = 0;
+    for (int i = 0; i < 3; ++i)
+      if (tri(i) != edge.first && tri(i) != edge.second) c = tri(i);
+    const Eigen::Vector3d w = vertices[static_cast<std::size_t>(c)] - a;
+    const Eigen::Vector3d p0 = vertices[static_cast<std::size_t>(tri(0))], p1 = vertices[static_cast<std::size_t>(tri(1))],
+                          p2 = vertices[static_cast<std::size_t>(tri(2))];
+    const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);  // outward
+    order.push_back({std::atan2(w.dot(e2), w.dot(e1)), t, u.cross(w).dot(-normal) > 0.0});
+  }
+  std::sort(order.begin(), order.end(), [](const Around& x, const Around& y) { return x.angle < y.angle; });
+  std::vector<std::pair<int, int>> pairs;
+  const std::size_t n = order.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if (order[i].inner_ahead) pairs.emplace_back(order[i].triangle, order[(i + 1) % n].triangle);
+  return pairs;
+}
+
 // Where one fragment's surface touches itself along an edge or at a vertex (two cracks cross
 // in a tet and the fragment holds two opposite corners of the cross, joined elsewhere), each
 // sheet gets its own copy of the vertex, so every edge is used by exactly two triangles. The
@@ -162,30 +198,7 @@ std::pair<double, std::vector<int>> unpinch(std::vector<Eigen::Vector3d>& vertic
       joined[edge].emplace_back(ts[0], ts[1]);
       continue;
     }
-    const Eigen::Vector3d a = vertices[static_cast<std::size_t>(edge.first)];
-    const Eigen::Vector3d u = (vertices[static_cast<std::size_t>(edge.second)] - a).normalized();
-    const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
-    struct Around {
-      double angle;
-      int triangle;
-      bool inner_ahead;  // its solid side lies toward increasing angle
-    };
-    std::vector<Around> order;
-    for (int t : ts) {
-      const auto& tri = before[static_cast<std::size_t>(t)];
-      int c = 0;
-      for (int i = 0; i < 3; ++i)
-        if (tri(i) != edge.first && tri(i) != edge.second) c = tri(i);
-      const Eigen::Vector3d w = vertices[static_cast<std::size_t>(c)] - a;
-      const Eigen::Vector3d p0 = vertices[static_cast<std::size_t>(tri(0))], p1 = vertices[static_cast<std::size_t>(tri(1))],
-                            p2 = vertices[static_cast<std::size_t>(tri(2))];
-      const Eigen::Vector3d normal = (p1 - p0).cross(p2 - p0);  // outward
-      order.push_back({std::atan2(w.dot(e2), w.dot(e1)), t, u.cross(w).dot(-normal) > 0.0});
-    }
-    std::sort(order.begin(), order.end(), [](const Around& x, const Around& y) { return x.angle < y.angle; });
-    const std::size_t n = order.size();
-    for (std::size_t i = 0; i < n; ++i)
-      if (order[i].inner_ahead) joined[edge].emplace_back(order[i].triangle, order[(i + 1) % n].triangle);
+    joined[edge] = wedge_pairs(vertices, before, edge, ts);
   }
   std::vector<std::vector<int>> around(vertices.size());
   for (std::size_t t = 0; t < before.size(); ++t)
@@ -592,11 +605,14 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
   // smaller one's area, and more than the faces tet_pieces keeps (1e-20 of an element's size²).
   const double element = std::cbrt(8.5 * mesh.total_volume() / std::max(1, n));  // a regular tet's edge
   const double area_floor = 1e-20 * element * element;
+  // Round-off of a coordinate on a shared plane (~1e-16 of the body's size) and far below any
+  // real gap between faces.
+  const double box_slack = 1e-12 * diagonal;
   const auto shared_area = [&](const Polygon& a, const Polygon& b, double common) {
     return common > std::max(area_floor, 1e-9 * std::min(polygon_area(a), polygon_area(b)));
   };
   const auto overlaps = [&](const Polygon& a, const Polygon& b) {
-    return !boxes_apart(a, b) && shared_area(a, b, polygon_area(intersect(a, b)));
+    return !boxes_apart(a, b, box_slack) && shared_area(a, b, polygon_area(intersect(a, b)));
   };
 
   detail::UnionFind sets(static_cast<std::size_t>(first_piece.back()));
@@ -694,7 +710,7 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
             for (std::size_t j = 0; j < mine.size(); ++j) {
               if (j == i || fragment_of_piece[static_cast<std::size_t>(piece_id(t, j))] == fragment) continue;
               const PieceFace* across = face_on(mine[j], PieceFaceKind::Crack, face.index);
-              if (!across || boxes_apart(face.points, across->points)) continue;
+              if (!across || boxes_apart(face.points, across->points, box_slack)) continue;
               Polygon common = intersect(face.points, across->points);
               // Against the smaller polygon: a sliver across a large face is real.
               const double common_area = polygon_area(common);
