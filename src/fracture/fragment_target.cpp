@@ -14,8 +14,13 @@ namespace fissure {
 
 namespace {
 
-// Within ±20 % of the target (at least ±1): what --fragments promises.
-bool near_target(int count, int target) { return std::abs(count - target) <= std::max(1.0, 0.2 * target); }
+// Within ±20 % of the target (at least ±1): what --fragments promises; or within `tolerance`.
+bool near_target(int count, int target, double tolerance = 0.2) {
+  return std::abs(count - target) <= std::max(tolerance > 0.0 ? 1.0 : 0.0, tolerance * target);
+}
+
+// Meshings simulate_to_fragment_mesh_count spends beyond the first.
+constexpr int kMaxMeshCountSteps = 6;
 
 // `run` cut to its first k cracks, or to the whole tie of cracks at the k-th crack's time (an
 // age cannot split a tie); returns the age of that state.
@@ -87,7 +92,7 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
 FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, const FractureParams& params,
                                                      const StressField& initial_stress, const Eigen::VectorXd& resistance,
                                                      std::uint64_t seed, int target, int threads,
-                                                     const SimulationOptions& options) {
+                                                     const SimulationOptions& options, double tolerance) {
   FragmentTargetResult out = simulate_to_fragment_count(body, params, initial_stress, resistance, seed, target, options);
   const auto mesh = [&](const FractureResult& r, int k) {
     const auto start = std::chrono::steady_clock::now();
@@ -98,61 +103,56 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
   };
   out.meshes = mesh(out.result, static_cast<int>(out.result.cracks.size()));
   const int first = static_cast<int>(out.meshes.size());
-  if (near_target(first, target)) {
-    out.reached = true;
-    out.reason.clear();
-    return out;
-  }
-  // A run that holds the answer: the labeller's own state when its meshes are too many, else
-  // a longer one (causal: the labeller's cracks are its first ones), doubling the age.
+  // The labeller's count stands in for the meshes' at a ratio measured on the last meshing: the
+  // prefix whose labelled count is the target over that ratio is meshed, and the ratio updated
+  // (a secant step on the labeller's count, which is cheap). A longer run is simulated when the
+  // prefix lies beyond the current one (causal: the shorter run's cracks are its first ones).
   FractureParams p = params;
   p.age = out.age > 0.0 ? out.age : 1.0;
   FractureResult run = out.result;
-  std::map<int, int> counted;  // crack prefix → meshes
-  const auto meshes_of = [&](int k) {
-    auto it = counted.find(k);
-    if (it == counted.end()) {
-      it = counted.emplace(k, static_cast<int>(mesh(run, k).size())).first;
-    }
+  const double max_age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))].max;
+  std::map<int, int> labelled;  // crack prefix of `run` → labeller's count
+  const auto labelled_of = [&](int k) {
+    auto it = labelled.find(k);
+    if (it == labelled.end()) it = labelled.emplace(k, label_fragments(body.mesh(), run.cracks, k).count).first;
     return it->second;
   };
-  int low = 0;  // a prefix with fewer meshes than the target (or 0)
-  if (first < target) {
-    low = static_cast<int>(run.cracks.size());
-    const double max_age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))].max;
-    for (int doubling = 0; doubling < 20; ++doubling) {
-      if (p.stress_rate <= 0.0 || p.age >= max_age || run.crack_limit_reached) break;
+  int best_k = static_cast<int>(run.cracks.size()), best = first, k_before = -1;
+  double ratio = static_cast<double>(first) / std::max(1, labelled_of(best_k));
+  for (int step = 0; step < kMaxMeshCountSteps && !near_target(best, target, tolerance); ++step) {
+    const int goal = static_cast<int>(std::ceil(target / std::max(ratio, 1e-3)));
+    while (labelled_of(static_cast<int>(run.cracks.size())) < goal && p.stress_rate > 0.0 && p.age < max_age &&
+           !run.crack_limit_reached) {
       p.age = std::min(2.0 * p.age, max_age);
       run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
-      counted.clear();
-      if (meshes_of(static_cast<int>(run.cracks.size())) >= target) break;
+      labelled.clear();
     }
-  }
-  const int n = static_cast<int>(run.cracks.size());
-  // Smallest prefix in [low, n] with ≥ target meshes (the count is non-decreasing in the prefix
-  // but for debris joins, which are rare), then the nearer of it and the one before.
-  int lo = low, hi = n;
-  if (meshes_of(n) < target) {
-    lo = n;
-  } else {
+    // The smallest prefix labelled ≥ goal (the count is non-decreasing in the prefix), or all.
+    int lo = 0, hi = static_cast<int>(run.cracks.size());
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
-      if (meshes_of(mid) >= target) {
+      if (labelled_of(mid) >= goal) {
         hi = mid;
       } else {
         lo = mid + 1;
       }
     }
+    if (lo == k_before || lo == best_k) break;  // no new prefix to try
+    k_before = lo;
+    const int count = static_cast<int>(mesh(run, lo).size());
+    if (std::abs(count - target) < std::abs(best - target)) {
+      best = count;
+      best_k = lo;
+    }
+    ratio = static_cast<double>(count) / std::max(1, labelled_of(lo));
   }
-  int k = lo;
-  if (k > low && std::abs(meshes_of(k - 1) - target) <= std::abs(meshes_of(k) - target)) --k;
-  if (std::abs(meshes_of(k) - target) >= std::abs(first - target)) {  // no better than the labeller's state
-    out.reached = false;
-    out.reason = shortfall(first, "fragment meshes", target, p.stress_rate);
+  if (best_k == static_cast<int>(out.result.cracks.size()) && best == first) {  // the labeller's state stays
+    out.reached = near_target(first, target);
+    out.reason = out.reached ? std::string() : shortfall(first, "fragment meshes", target, p.stress_rate);
     return out;
   }
-  out.age = cut_to_prefix(body, run, k);
-  out.meshes = mesh(run, k);
+  out.age = cut_to_prefix(body, run, best_k);
+  out.meshes = mesh(run, best_k);
   out.result = std::move(run);
   const int count = static_cast<int>(out.meshes.size());
   out.reached = near_target(count, target);

@@ -127,8 +127,9 @@ const RaceCase& race_case(int pieces, int tets) {
   if (it != cases.end()) return it->second;
   const Body& b = body(tets);
   const auto t0 = std::chrono::steady_clock::now();
+  // Tolerance 0: the nearest count its search meets (Cell Fracture makes exactly N).
   const FragmentTargetResult r = simulate_to_fragment_mesh_count(b.prepared->fracture_body(), params(), b.initial,
-                                                                 b.resistance, 1, pieces, thread_count());
+                                                                 b.resistance, 1, pieces, thread_count(), {}, 0.0);
   RaceCase c;
   c.cracks = crack_count(r.result);
   c.search_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

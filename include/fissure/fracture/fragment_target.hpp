@@ -35,13 +35,15 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
 /// The same, aimed at the closed meshes' count (mesh_fragments on `threads` threads), which is
 /// the one an artist sees. The labeller's count runs ahead of it on dense patterns (it probes a
 /// few points per tet face and misses thin passages beyond a crack's tip: 763 labelled against
-/// 479 meshes at 22K tets and N = 1000), so starting from the labeller's state, when its meshes
-/// are off by more than 20 % the age is raised (doubling) until the meshes reach N and the crack
-/// prefix is bisected on the meshes' count. Costs one meshing when the labeller is close, else
-/// about log₂(#cracks) more. `meshes` holds the result's meshes. Throws as simulate_to_fragment_count.
+/// 479 meshes at 22K tets and N = 1000). From the labeller's state, when its meshes are off by
+/// more than `tolerance` (relative; at least ±1 when positive), the labeller's count stands in
+/// for the meshes' at the ratio of the last meshing: the prefix labelled N / ratio is meshed
+/// (the age doubled when the run is too short) and the ratio updated, up to 6 times; the nearest
+/// state met is kept. Costs one meshing when the labeller is close, else up to 7. `meshes`
+/// holds the result's meshes. Throws as simulate_to_fragment_count.
 FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, const FractureParams& params,
                                                      const StressField& initial_stress, const Eigen::VectorXd& resistance,
                                                      std::uint64_t seed, int target, int threads,
-                                                     const SimulationOptions& options = {});
+                                                     const SimulationOptions& options = {}, double tolerance = 0.2);
 
 }  // namespace fissure
