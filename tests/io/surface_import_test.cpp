@@ -18,6 +18,7 @@
 #include <array>
 #include <fstream>
 #include <limits>
+#include <span>
 #include <sstream>
 
 namespace fissure {
@@ -98,6 +99,23 @@ std::string import_error(const fs::path& path) {
     return std::string("InvalidInput: ") + e.what();
   }
   return "no error";
+}
+
+// A file that import_surface must refuse with an IoError naming it and saying `words`.
+struct Refusal {
+  const char* file;
+  std::string bytes;
+  const char* words;
+};
+
+void expect_refusals(const fs::path& dir, std::span<const Refusal> cases) {
+  for (const Refusal& c : cases) {
+    const fs::path path = dir / c.file;
+    write_file_atomically(path, c.bytes);
+    const std::string e = import_error(path);
+    EXPECT_EQ(e.rfind("IoError: " + path.string() + ":", 0), 0u) << e;
+    EXPECT_NE(e.find(c.words), std::string::npos) << e;
+  }
 }
 
 TEST(SurfaceImport, BadFilesAreNamed) {
@@ -302,11 +320,7 @@ TEST(SurfaceImport, FaceWithAMissingVertexIsNamed) {
   const fs::path dir = test::fresh_temp_dir("import-index");
   test::Polygons p = test::polygons_of(test::l_prism());
   p.faces[2][1] = 12;  // one past the last vertex
-  const struct {
-    const char* file;
-    std::string bytes;
-    const char* words;
-  } cases[] = {
+  const Refusal cases[] = {
       {"bad.obj", test::to_obj(p), "bad.obj:17: face 3 references vertex 13, but only 12 vertices come before it"},
       {"bad.ply", test::to_ply(p), "face 3 references vertex index 12, but the file has 12 vertices (indices 0 to 11)"},
       {"bad-le.ply", test::to_ply_binary(p, false), "face 3 references vertex index 12, but the file has 12 vertices"},
@@ -314,13 +328,7 @@ TEST(SurfaceImport, FaceWithAMissingVertexIsNamed) {
       {"relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -1 -2 -4\n", "face 1 references vertex -4, but only 3 vertices come before it"},
       {"two.off", "OFF\n3 1 0\n0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n2 0 1\n", "face 1 has 2 vertices; a face needs at least 3"},
   };
-  for (const auto& c : cases) {
-    const fs::path path = dir / c.file;
-    write_file_atomically(path, c.bytes);
-    const std::string e = import_error(path);
-    EXPECT_EQ(e.rfind("IoError: " + path.string() + ":", 0), 0u) << e;
-    EXPECT_NE(e.find(c.words), std::string::npos) << e;
-  }
+  expect_refusals(dir, cases);
 }
 
 // Materials and texture coordinates: an OBJ's `usemtl` and `vt` (one quad per material, a
@@ -387,11 +395,7 @@ TEST(SurfaceImport, MaterialsAndUVsAreKeptAsTheAppearance) {
 TEST(SurfaceImport, BadTextureCoordinatesAreNamed) {
   const fs::path dir = test::fresh_temp_dir("import-bad-uv");
   const std::string tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
-  const struct {
-    const char* file;
-    std::string bytes;
-    const char* words;
-  } cases[] = {
+  const Refusal cases[] = {
       {"past.obj", tet + "vt 0 0\nf 1/2 3/1 2/1\n", "past.obj:6: face 1 references texture coordinate 2, but only 1 come before it"},
       {"back.obj", tet + "vt 0 0\nf 1/-3 3/1 2/1\n", "face 1 references texture coordinate -3, but only 1 come before it"},
       {"word.obj", tet + "vt 0 0\nf 1/x 3/1 2/1\n", "face 1: '1/x' is not a texture coordinate reference"},
@@ -400,13 +404,7 @@ TEST(SurfaceImport, BadTextureCoordinatesAreNamed) {
       {"text.obj", tet + "vt 0 zero\n", "texture coordinate 1: 'zero' is not a number"},
       {"nameless.obj", tet + "usemtl\n", "usemtl names no material"},
   };
-  for (const auto& c : cases) {
-    const fs::path path = dir / c.file;
-    write_file_atomically(path, c.bytes);
-    const std::string e = import_error(path);
-    EXPECT_EQ(e.rfind("IoError: " + path.string() + ":", 0), 0u) << e;
-    EXPECT_NE(e.find(c.words), std::string::npos) << e;
-  }
+  expect_refusals(dir, cases);
 }
 
 // Byte ranges assimp 5.2.5 trusts in a glTF 2.0 file. On 0565c28 each of these hand-made
