@@ -177,7 +177,9 @@ std::vector<std::pair<int, int>> wedge_pairs(const std::vector<Eigen::Vector3d>&
 // move). The volume changes by that times the area round the vertex: ~1e-10 of it here.
 // An edge whose sheets also join round both its ends (no copy of an end parts them: one of 849
 // fragments of the 1 m tile at 57K tets and 2,005 cracks) is split at its midpoint, one
-// midpoint per sheet, moved the same way. `triangle_crack` follows the triangles.
+// midpoint per sheet, moved the same way; a far shorter one (8e-11 m on a 6 cm fragment, seen
+// in the sanitizer build, whose round-off differs) is merged into a point first.
+// `triangle_crack` follows the triangles.
 // Returns the separation and the vertices moved.
 std::pair<double, std::vector<int>> unpinch(std::vector<Eigen::Vector3d>& vertices, std::vector<Eigen::Vector3i>& triangles,
                                             std::vector<int>& triangle_crack) {
@@ -187,6 +189,36 @@ std::pair<double, std::vector<int>> unpinch(std::vector<Eigen::Vector3d>& vertic
     high = high.cwiseMax(x);
   }
   const double separation = vertices.empty() ? 0.0 : 4e-7 * (high - low).norm();
+  // A pinched edge far shorter than the separation is a pinch at a point: its ends are merged
+  // (the triangles on it, two per sheet, go), and the vertex pass below parts the sheets there.
+  // Split instead, its halves would be collapsed back into a pinch by collapse_short_edges.
+  {
+    std::map<std::pair<int, int>, int> uses;
+    for (const auto& t : triangles)
+      for (int i = 0; i < 3; ++i) ++uses[{std::min(t(i), t((i + 1) % 3)), std::max(t(i), t((i + 1) % 3))}];
+    std::vector<int> merged(vertices.size());
+    std::iota(merged.begin(), merged.end(), 0);
+    bool any = false;
+    for (const auto& [edge, count] : uses) {
+      if (count <= 2 || merged[static_cast<std::size_t>(edge.first)] != edge.first || merged[static_cast<std::size_t>(edge.second)] != edge.second) continue;
+      if ((vertices[static_cast<std::size_t>(edge.first)] - vertices[static_cast<std::size_t>(edge.second)]).norm() >= 10.0 * separation) continue;
+      merged[static_cast<std::size_t>(edge.second)] = edge.first;
+      any = true;
+    }
+    if (any) {
+      std::vector<Eigen::Vector3i> kept;
+      std::vector<int> kept_crack;
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        Eigen::Vector3i tri = triangles[t];
+        for (int i = 0; i < 3; ++i) tri(i) = merged[static_cast<std::size_t>(tri(i))];
+        if (tri(0) == tri(1) || tri(1) == tri(2) || tri(2) == tri(0)) continue;
+        kept.push_back(tri);
+        kept_crack.push_back(triangle_crack[t]);
+      }
+      triangles = std::move(kept);
+      triangle_crack = std::move(kept_crack);
+    }
+  }
   const std::vector<Eigen::Vector3i> before = triangles;  // the sheets are read off the input
   // Each undirected edge's triangles.
   std::map<std::pair<int, int>, std::vector<int>> edge_triangles;
