@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 namespace fissure::io_detail {
@@ -183,13 +185,19 @@ Header read_header(ByteCursor& c) {
   return h;
 }
 
-// Where x, y, z sit in the vertex element, and the face element's index list.
+// Where x, y, z (and a texture coordinate pair) sit in the vertex element, and the face
+// element's index list.
 struct Layout {
   const Element* vertex = nullptr;
   const Element* face = nullptr;
   int xyz[3] = {-1, -1, -1};
+  int uv[2] = {-1, -1};
   int indices = -1;
 };
+
+// The names exporters give a vertex's texture coordinates (Blender writes s, t; others u, v).
+constexpr std::pair<const char*, const char*> kUvNames[] = {
+    {"s", "t"}, {"u", "v"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
 
 Layout find_layout(const ByteCursor& c, const Header& h) {
   Layout layout;
@@ -210,6 +218,20 @@ Layout find_layout(const ByteCursor& c, const Header& h) {
   }
   for (int axis = 0; axis < 3; ++axis) {
     if (layout.xyz[axis] < 0) c.fail(std::string("the vertex element has no property ") + static_cast<char>('x' + axis));
+  }
+  for (const auto& [u, v] : kUvNames) {
+    int found[2] = {-1, -1};
+    for (std::size_t k = 0; k < layout.vertex->properties.size(); ++k) {
+      const Property& p = layout.vertex->properties[k];
+      if (p.list) continue;
+      if (p.name == u) found[0] = static_cast<int>(k);
+      if (p.name == v) found[1] = static_cast<int>(k);
+    }
+    if (found[0] >= 0 && found[1] >= 0) {
+      layout.uv[0] = found[0];
+      layout.uv[1] = found[1];
+      break;
+    }
   }
   for (std::size_t k = 0; k < layout.face->properties.size(); ++k) {
     const Property& p = layout.face->properties[k];
@@ -248,13 +270,16 @@ SurfaceMesh read_ply(std::string_view bytes, const std::string& name) {
   for (const Element& e : h.elements) {
     if (e.properties.empty()) continue;  // nothing to read, however many
     for (std::uint64_t item = 0; item < e.count; ++item) {
-      double xyz[3] = {0, 0, 0};
+      double xyz[3] = {0, 0, 0}, uv[2] = {0, 0};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
         if (!p.list) {
           const double value = values.read(p.type);
-          for (int axis = 0; axis < 3; ++axis) {
-            if (&e == layout.vertex && layout.xyz[axis] == static_cast<int>(k)) xyz[axis] = value;
+          if (&e == layout.vertex) {
+            for (int axis = 0; axis < 3; ++axis)
+              if (layout.xyz[axis] == static_cast<int>(k)) xyz[axis] = value;
+            for (int i = 0; i < 2; ++i)
+              if (layout.uv[i] == static_cast<int>(k)) uv[i] = value;
           }
           continue;
         }
@@ -267,8 +292,13 @@ SurfaceMesh read_ply(std::string_view bytes, const std::string& name) {
         if (indices) face[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(std::clamp(value, -9e18, 9e18));
         }
       }
-      if (&e == layout.vertex) soup.add_vertex(c, xyz[0], xyz[1], xyz[2]);
-      if (&e == layout.face) soup.add_face(c, face);
+      if (&e == layout.vertex) {
+        soup.add_vertex(c, xyz[0], xyz[1], xyz[2]);
+        if (layout.uv[0] >= 0) soup.add_uv(c, uv[0], uv[1]);
+      }
+      // Per-vertex texture coordinates: a corner's is its vertex's (faces read before the
+      // vertices, which PLY allows, keep none).
+      if (&e == layout.face) soup.add_face(c, face, layout.uv[0] >= 0 && soup.uv_count() > 0 ? std::span<const std::int64_t>(face) : std::span<const std::int64_t>());
     }
   }
   return soup.finish("a PLY file");

@@ -18,12 +18,13 @@
 namespace fissure::io_detail {
 
 /// Wavefront OBJ: `v` and `f` lines (`f 1/2/3 …`, negative indices count back from the last
-/// vertex); points, lines, texture coordinates, normals, groups and materials are ignored.
+/// vertex), and `vt` and `usemtl` as the appearance; points, lines, normals and groups are ignored.
 SurfaceMesh read_obj(std::string_view bytes, const std::string& name);
 
 /// Stanford PLY 1.0, `ascii`, `binary_little_endian` or `binary_big_endian`: the `vertex`
-/// element's x, y, z and the `face` element's `vertex_indices` (or `vertex_index`) list, of any
-/// PLY scalar type; other elements and properties are read past.
+/// element's x, y, z (and texture coordinates s, t / u, v / texture_u, texture_v, kept as the
+/// appearance) and the `face` element's `vertex_indices` (or `vertex_index`) list, of any PLY
+/// scalar type; other elements and properties are read past.
 SurfaceMesh read_ply(std::string_view bytes, const std::string& name);
 
 /// STL, binary (when the size is 84 + 50·count or the file does not start with "solid") or

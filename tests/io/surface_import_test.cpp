@@ -392,6 +392,33 @@ TEST(SurfaceImport, MaterialsAndUVsAreKeptAsTheAppearance) {
   EXPECT_TRUE(found);
 }
 
+// PLY's per-vertex texture coordinates (s, t as Blender writes them): each corner gets its
+// vertex's; a PLY without them has no appearance, and a non-finite one is refused.
+TEST(SurfaceImport, PlyTextureCoordinatesAreKept) {
+  const fs::path dir = test::fresh_temp_dir("import-ply-uv");
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float s\nproperty float t\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string faces = "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  write_file_atomically(dir / "t.ply", header + "0 0 0 0.5 0.5\n1 0 0 1 0.5\n0 1 0 0.5 1\n0 0 1 0 0\n" + faces);
+  SurfaceRepairReport report;
+  const SurfaceAppearance a = import_surface(dir / "t.ply", report).appearance;
+  ASSERT_TRUE(a.has_uvs());
+  ASSERT_EQ(a.corners.rows(), 4);
+  for (Eigen::Index t = 0; t < 4; ++t)
+    for (int k = 0; k < 3; ++k) {
+      // Vertex (x, y, z) has (s, t) = (0.5 + x/2, 0.5 + y/2), but the apex (0, 0, 1) has (0, 0).
+      const Eigen::Vector3d x = a.corners.row(t).segment<3>(3 * k).transpose();
+      const Eigen::Vector2d expected = x.z() > 0.5 ? Eigen::Vector2d(0, 0) : Eigen::Vector2d(0.5 + x.x() / 2, 0.5 + x.y() / 2);
+      EXPECT_EQ(a.uvs.row(t).segment<2>(2 * k).transpose(), expected) << "triangle " << t << ", corner " << k;
+    }
+  write_file_atomically(dir / "plain.ply", test::to_ply(test::polygons_of(test::l_prism())));
+  EXPECT_TRUE(import_surface(dir / "plain.ply", report).appearance.empty());
+  write_file_atomically(dir / "nan.ply", header + "0 0 0 0.5 nan\n1 0 0 1 0.5\n0 1 0 0.5 1\n0 0 1 0 0\n" + faces);
+  const std::string e = import_error(dir / "nan.ply");
+  EXPECT_NE(e.find("texture coordinate 1 is not finite"), std::string::npos) << e;
+}
+
 TEST(SurfaceImport, BadTextureCoordinatesAreNamed) {
   const fs::path dir = test::fresh_temp_dir("import-bad-uv");
   const std::string tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n";
