@@ -120,7 +120,6 @@ std::shared_ptr<const TetMesh> mesh_from(const FractureArgs& args, TerminalProgr
   SurfaceRepairReport repairs;
   SurfaceMesh surface = load_surface_input(args.input, repairs);
   appearance = std::move(surface.appearance);
-  surface.appearance = {};
   for (const std::string& action : repairs.actions) std::cerr << "fissure fracture: repaired " << args.input << ": " << action << '\n';
   TetrahedralizeOptions options;
   options.target_tets = static_cast<int>(std::lround(args.tets));

@@ -35,6 +35,22 @@ double cut_to_prefix(const FractureBody& body, FractureResult& run, int& k) {
   return age;
 }
 
+// The smallest prefix k in [0, n] with count(k) ≥ goal, for a count non-decreasing in k; n when
+// none reaches it.
+template <class Count>
+int smallest_prefix_reaching(int n, int goal, const Count& count) {
+  int lo = 0, hi = n;
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (count(mid) >= goal) {
+      hi = mid;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  return lo;
+}
+
 // Why the count stayed off the target.
 std::string shortfall(int count, const char* what, int target, double stress_rate) {
   return "reached " + std::to_string(count) + " " + what + ", not about " + std::to_string(target) +
@@ -67,20 +83,7 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
     return c;
   };
   // Smallest prefix with ≥ target fragments (the count is non-decreasing in the prefix).
-  int lo = 0, hi = n;
-  if (fragments_of(n) < target) {
-    lo = n;
-  } else {
-    while (lo < hi) {
-      const int mid = (lo + hi) / 2;
-      if (fragments_of(mid) >= target) {
-        hi = mid;
-      } else {
-        lo = mid + 1;
-      }
-    }
-  }
-  int k = lo;
+  int k = smallest_prefix_reaching(n, target, fragments_of);
   if (k > 0 && std::abs(fragments_of(k - 1) - target) <= std::abs(fragments_of(k) - target)) --k;
   out.age = cut_to_prefix(body, run, k);
   out.reached = near_target(run.fragments.count, target);
@@ -118,6 +121,8 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
     return it->second;
   };
   int best_k = static_cast<int>(run.cracks.size()), best = first, k_before = -1;
+  bool improved = false;  // best_k is a later state than the labeller's, meshed as best_meshes
+  std::vector<FragmentMesh> best_meshes;
   double ratio = static_cast<double>(first) / std::max(1, labelled_of(best_k));
   for (int step = 0; step < kMaxMeshCountSteps && !near_target(best, target, tolerance); ++step) {
     const int goal = static_cast<int>(std::ceil(target / std::max(ratio, 1e-3)));
@@ -127,33 +132,27 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
       run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
       labelled.clear();
     }
-    // The smallest prefix labelled ≥ goal (the count is non-decreasing in the prefix), or all.
-    int lo = 0, hi = static_cast<int>(run.cracks.size());
-    while (lo < hi) {
-      const int mid = (lo + hi) / 2;
-      if (labelled_of(mid) >= goal) {
-        hi = mid;
-      } else {
-        lo = mid + 1;
-      }
-    }
-    if (lo == k_before || lo == best_k) break;  // no new prefix to try
-    k_before = lo;
-    const int count = static_cast<int>(mesh(run, lo).size());
+    // The smallest prefix labelled ≥ goal, or all.
+    const int k = smallest_prefix_reaching(static_cast<int>(run.cracks.size()), goal, labelled_of);
+    if (k == k_before || k == best_k) break;  // no new prefix to try
+    k_before = k;
+    std::vector<FragmentMesh> meshes = mesh(run, k);
+    const int count = static_cast<int>(meshes.size());
+    ratio = static_cast<double>(count) / std::max(1, labelled_of(k));
     if (std::abs(count - target) < std::abs(best - target)) {
       best = count;
-      best_k = lo;
+      best_k = k;
+      best_meshes = std::move(meshes);
+      improved = true;
     }
-    ratio = static_cast<double>(count) / std::max(1, labelled_of(lo));
   }
-  if (best_k == static_cast<int>(out.result.cracks.size()) && best == first) {  // the labeller's state stays
-    out.reached = near_target(first, target);
-    out.reason = out.reached ? std::string() : shortfall(first, "fragment meshes", target, p.stress_rate);
-    return out;
+  if (improved) {
+    int k = best_k;
+    out.age = cut_to_prefix(body, run, k);
+    // A tie of cracks at the prefix's last instant is kept whole, which changes the state.
+    out.meshes = k == best_k ? std::move(best_meshes) : mesh(run, k);
+    out.result = std::move(run);
   }
-  out.age = cut_to_prefix(body, run, best_k);
-  out.meshes = mesh(run, best_k);
-  out.result = std::move(run);
   const int count = static_cast<int>(out.meshes.size());
   out.reached = near_target(count, target);
   out.reason = out.reached ? std::string() : shortfall(count, "fragment meshes", target, p.stress_rate);
