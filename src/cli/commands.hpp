@@ -29,5 +29,6 @@ void register_modes(CLI::App& app, Action& action);
 void register_analyze(CLI::App& app, Action& action);
 void register_compare(CLI::App& app, Action& action);
 void register_fracture(CLI::App& app, Action& action);
+void register_fit(CLI::App& app, Action& action);
 
 }  // namespace fissure::cli

@@ -141,11 +141,17 @@ LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double for
     throw InvalidInput(mesh.source_name() + ": no boundary face looks up along the up axis, so there is no top face "
                        "for the default load; give --load or another --up");
   }
+  return patch_load(mesh, f.up, face_centre(mesh, *best), force, patch_radius);
+}
+
+LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen::Vector3d& centre, double force,
+                    double patch_radius) {
+  const Frame f = frame_of(mesh, up);
   double radius = patch_radius > 0.0 ? patch_radius : 0.05 * f.across;
   // At least about two elements across, so the patch holds several faces.
   const double h = std::cbrt(6.0 * std::sqrt(2.0) * mesh.total_volume() / mesh.tet_count());
   radius = std::max(radius, 2.0 * h);
-  const Eigen::Vector3d c = face_centre(mesh, *best);
+  const Eigen::Vector3d& c = centre;
   LoadSpec load;
   load.selection.kind = Selection::Kind::Ball;
   load.selection.center = c;

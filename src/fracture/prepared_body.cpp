@@ -40,7 +40,11 @@ Eigen::VectorXd PreparedBody::load_vector(const FractureParams& params) const {
 }
 
 StressField PreparedBody::initial_stress(const FractureParams& params, bool recovered) const {
-  const Eigen::VectorXd f = load_vector(params);
+  return stress_of_forces(load_vector(params), recovered);
+}
+
+StressField PreparedBody::stress_of_forces(const Eigen::VectorXd& f, bool recovered) const {
+  if (f.size() != 3 * mesh().node_count()) throw InvalidInput("the force vector has the wrong size for the body");
   if (f.isZero(0.0)) return StressField::Zero(mesh().tet_count(), 6);
   const StaticSolution solution = m_solver->solve(f);
   if (!recovered) return compute_stress(*m_body, solution.displacement);

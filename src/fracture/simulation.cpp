@@ -158,20 +158,33 @@ public:
     m_gc = critical_energy_release_rate(params);
     m_flaw = flaw_size(params);
     m_directional = resolve_directional();
+    m_next_check = std::max(m_options.stop_check_at, 1);
   }
 
   FractureResult run() {
     FractureResult result;
     double now = m_options.fixed_time_step > 0.0 ? run_fixed_steps(result) : run_events(result);
-    result.simulated_age = result.crack_limit_reached ? now : m_params.age;
+    result.simulated_age = result.crack_limit_reached || m_stopped ? now : m_params.age;
+    result.stopped_early = m_stopped;
     result.cracks = std::move(m_cracks);
-    result.fragments =
-        label_fragments(m_mesh, result.cracks, static_cast<int>(result.cracks.size()), &result.partial_cracks);
+    if (m_options.label_fragments) {
+      result.fragments =
+          label_fragments(m_mesh, result.cracks, static_cast<int>(result.cracks.size()), &result.partial_cracks);
+    }
     if (m_options.progress) m_options.progress->report("simulate", 1.0);
     return result;
   }
 
 private:
+  // Whether stop_check asks to stop now (called once the crack count reaches the next check).
+  bool stop_requested() {
+    if (!m_options.stop_check || m_stopped || static_cast<int>(m_cracks.size()) < m_next_check) return m_stopped;
+    const int next = m_options.stop_check(m_cracks);
+    if (next <= 0) m_stopped = true;
+    else m_next_check = std::max(next, static_cast<int>(m_cracks.size()) + 1);
+    return m_stopped;
+  }
+
   void after_crack(double now) {
     if ((m_cracks.size() & 63u) == 0) {
       if (m_options.cancel) m_options.cancel->throw_if_cancelled();
@@ -205,6 +218,7 @@ private:
         }
         open_crack(best, now);
         after_crack(now);
+        if (stop_requested()) return now;
       }
       if (now >= m_params.age) break;
     }
@@ -246,6 +260,7 @@ private:
       now = e.time;
       open_crack(e.tet, now);
       after_crack(now);
+      if (stop_requested()) break;
     }
     return now;
   }
@@ -931,6 +946,8 @@ private:
   int m_path_leaves = -1;  // a crack whose tets do not end the path being traced (a star's third arm)
   double m_max_slope = kInf;
   bool m_directional = true;
+  bool m_stopped = false;  ///< stop_check asked to stop
+  int m_next_check = 0;    ///< the crack count of stop_check's next call
 
 };
 

@@ -31,6 +31,7 @@
 #include "fissure/base/rng.hpp"
 #include "fissure/exemplar/exemplar_analysis.hpp"
 #include "fissure/exemplar/similarity.hpp"
+#include "fissure/fit/fit_prior.hpp"
 #include "fissure/fracture/material_file.hpp"
 #include "fissure/fracture/pattern_image.hpp"
 #include "fissure/fracture/prepared_body.hpp"
@@ -172,28 +173,16 @@ struct Exemplar {
 };
 
 // One box of the five fitted parameters, in table3_priors() order, in absolute units.
-struct PriorBox {
-  std::array<std::size_t, 5> row{};   // fracture_parameter_table() rows
-  std::array<double, 5> lo{}, hi{};
+// The fit's box (fit_prior.hpp) plus the corners this report draws.
+struct PriorBox : fissure::PriorBox {
   std::array<double, 5> corner_lo{};  // lo, or just above it where the range excludes lo
 };
 
 PriorBox prior_box(const FractureParams& base, double fragment_scale) {
   PriorBox box;
+  static_cast<fissure::PriorBox&>(box) = make_prior_box(base, fragment_scale);
   const auto& table = fracture_parameter_table();
   for (std::size_t k = 0; k < 5; ++k) {
-    const FitPrior& prior = table3_priors()[k];
-    const int row = find_fracture_parameter(prior.name);
-    if (row < 0) throw InvalidInput(std::string("table3_priors names ") + prior.name + ", not a parameter");
-    box.row[k] = static_cast<std::size_t>(row);
-    double reference = 1.0;
-    switch (prior.reference) {
-      case PriorReference::ResistanceMean: reference = base.resistance_mean; break;
-      case PriorReference::FragmentScale: reference = fragment_scale; break;
-      case PriorReference::None: break;
-    }
-    box.lo[k] = prior.min_fraction * reference;
-    box.hi[k] = prior.max_fraction * reference;
     // r_relax's range excludes 0: its low corner is 1 % of the box, far below an element size
     // (≈ 1.5 cm at 24K tets on the 1 m tile), where relaxation and the per-path energy decay
     // act as at 0.

@@ -67,6 +67,66 @@ TEST(MaterialFile, RoundTripIsExact) {
   }
 }
 
+// A material as `fissure fit` writes it (values awkward on purpose: not short decimals).
+FractureMaterial fitted_sample() {
+  FractureMaterial m = sample_material();
+  MaterialFit f;
+  f.method = "smc";
+  f.trials = 20000;
+  f.seed = 18446744073709551615ULL;  // the largest seed: must survive JSON's integer range
+  f.error = 0.1 + 1e-17;
+  f.error_stddev = 1.0 / 7.0;
+  f.error_seeds = 8;
+  f.score = 0.09;
+  f.exemplar.source = "mud.png";
+  f.exemplar.total_area = 250000.0;
+  f.exemplar.fragment_area_hist = Histogram::make(-6.0, 0.0, 24);
+  f.exemplar.fragment_area_hist.add(-2.0);
+  f.exemplar.fragment_area_hist.normalize();
+  f.exemplar.crack_length_hist = Histogram::make(-4.0, 0.0, 16);
+  f.exemplar.junction_density_hist = Histogram::make(0.0, 5.0, 20);
+  f.exemplar.junction_angle_hist = Histogram::make(0.0, 360.0, 36);
+  f.exemplar.fragment_count = 1;
+  f.exemplar.fragment_areas = {1.0 / 3.0};
+  f.age = 3.0;
+  f.body_width = 1.0;
+  f.body_height = 2.0 / 3.0;
+  f.body_thickness = 0.02;
+  f.body_tets = 24000;
+  f.tets_per_fragment = 120;
+  f.min_tets = 24000;
+  f.max_tets = 60000;
+  f.capped = true;
+  f.note = "capped, \"quoted\"";
+  f.fragment_scale = 0.1 / 3.0;
+  f.load_grid = 8;
+  f.load_inset = 0.15;
+  f.supports = "rim-rollers";
+  f.posterior_mean = {1e6 / 3.0, 0.1, 2e6, 3e6, 10.0 / 3.0};
+  f.posterior_stddev = {1.0, 2.0, 3.0, 4.0, 5.0};
+  f.samples = {{1, 2, 3, 4, 5}, {1.0 / 3.0, 0.1, 0.2, 0.3, 0.4}};
+  f.weights = {0.25, 0.75};
+  m.fit = f;
+  return m;
+}
+
+TEST(MaterialFile, FitRecordRoundTripsExactly) {
+  const FractureMaterial m = fitted_sample();
+  const std::string text = material_to_json(m);
+  const FractureMaterial back = material_from_json(text, "fitted.json");
+  expect_same(back, m);
+  ASSERT_TRUE(back.fit.has_value());
+  // Writing what was read gives the same bytes: every field, every bit.
+  EXPECT_EQ(material_to_json(back), text);
+  EXPECT_EQ(back.fit->seed, m.fit->seed);
+  EXPECT_EQ(back.fit->samples, m.fit->samples);
+  EXPECT_EQ(back.fit->exemplar.fragment_area_hist.p, m.fit->exemplar.fragment_area_hist.p);
+  // A version-1 file (every bundled material, and files written before the fit existed) still reads.
+  nlohmann::json old = nlohmann::json::parse(material_to_json(sample_material()));
+  old["version"] = 1;
+  EXPECT_FALSE(material_from_json(old.dump(), "old.json").fit.has_value());
+}
+
 std::string io_error_of(const std::string& text) {
   try {
     material_from_json(text, "slate.json");
@@ -110,9 +170,16 @@ TEST(MaterialFile, EveryKeyIsChecked) {
       {"schema \"fissure-project\" is not \"fissure-material\" (not a Fissure material file)",
        [](nlohmann::json& j) { j["schema"] = "fissure-project"; }},
       {"missing key schema", [](nlohmann::json& j) { j.erase("schema"); }},
-      {"version 2 is not the supported version 1", [](nlohmann::json& j) { j["version"] = 2; }},
-      {"version \"1\" is not the supported version 1", [](nlohmann::json& j) { j["version"] = "1"; }},
-      {"version 1.5 is not the supported version 1", [](nlohmann::json& j) { j["version"] = 1.5; }},
+      {"version 3 is not a supported version (1 to 2)", [](nlohmann::json& j) { j["version"] = 3; }},
+      {"version 0 is not a supported version (1 to 2)", [](nlohmann::json& j) { j["version"] = 0; }},
+      {"version \"1\" is not a supported version (1 to 2)", [](nlohmann::json& j) { j["version"] = "1"; }},
+      {"version 1.5 is not a supported version (1 to 2)", [](nlohmann::json& j) { j["version"] = 1.5; }},
+      {"unknown key \"fit\"", [](nlohmann::json& j) {
+         j["version"] = 1;  // version 1 had no fit record
+         j["fit"] = nlohmann::json::object();
+       }},
+      {"missing key fit.method", [](nlohmann::json& j) { j["fit"] = nlohmann::json::object(); }},
+      {"unknown key fit.\"methd\" (did you mean fit.method?)", [](nlohmann::json& j) { j["fit"] = {{"methd", "paper"}}; }},
       {"the document is array, not an object", [](nlohmann::json& j) { j = nlohmann::json::array({1}); }},
   };
   for (const Case& c : cases) {
@@ -297,6 +364,17 @@ TEST(MaterialFileFuzz, CorruptedFilesAreReadOrRefused) {
     Rng rng = Rng::derive(2026, "material fuzz", std::hash<std::string>{}(name) % 1000);
     for (int i = 0; i < 600; ++i) expect_read_or_refused(corrupt_bytes(text, rng), read, refused);
     for (int i = 0; i < 400; ++i) expect_read_or_refused(corrupt_structure(j, rng), read, refused);
+  }
+  // A fitted material: the fit record's reader meets the same corruptions.
+  {
+    const std::string text = material_to_json(fitted_sample());
+    const nlohmann::json j = nlohmann::json::parse(text);
+    Rng rng = Rng::derive(2026, "material fuzz", 999);
+    int fit_read = 0, fit_refused = 0;
+    for (int i = 0; i < 300; ++i) expect_read_or_refused(corrupt_bytes(text, rng), fit_read, fit_refused);
+    for (int i = 0; i < 300; ++i) expect_read_or_refused(corrupt_structure(j, rng), fit_read, fit_refused);
+    EXPECT_GT(fit_read, 5);
+    EXPECT_GT(fit_refused, 300);
   }
   // 5000 files. Most edits break the file; some (a changed digit, a deleted optional key) leave
   // a valid one. Both outcomes must occur, or the corruption is not exercising the reader.

@@ -28,6 +28,8 @@ struct FractureResult {
   /// True when SimulationOptions::max_cracks stopped the run before `simulated_age` was reached;
   /// simulated_age is then the time of the last crack.
   bool crack_limit_reached = false;
+  /// True when SimulationOptions::stop_check stopped the run (simulated_age: the last crack's).
+  bool stopped_early = false;
   /// Cracks that separate nothing at the simulated age (every tet on both sides of them is one
   /// fragment), by index.
   std::vector<int> partial_cracks;

@@ -42,6 +42,12 @@ std::vector<int> default_support_dofs(const TetMesh& mesh, const Eigen::Vector3d
 /// its reference normal). Throws InvalidInput when no boundary face looks up within 45°.
 LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius = 0.0);
 
+/// A patch load like the default one but centred at `centre` (a point of the top face): radius
+/// `patch_radius` (0: 5 % of the body's largest extent across up), at least 2 element sizes,
+/// pushing with `force` (N) along −up. The fit's load at a drawn position.
+LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen::Vector3d& centre, double force,
+                    double patch_radius = 0.0);
+
 /// Parses "+x", "-y", "z" (= "+z"), … as a unit axis. Throws InvalidInput naming the text.
 Eigen::Vector3d parse_up_axis(const std::string& text);
 

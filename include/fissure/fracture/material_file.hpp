@@ -12,16 +12,19 @@
 /// An unknown key is an error (it is a typo, or a key of a newer version), and so is a key given
 /// twice (JSON readers would silently keep one of them).
 #include "fissure/fracture/fracture_params.hpp"
+#include "fissure/fracture/material_fit.hpp"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace fissure {
 
 constexpr const char* kMaterialSchema = "fissure-material";
-/// Written as "version"; readers refuse other versions.
-constexpr int kMaterialVersion = 1;
+/// Written as "version". Version 2 added the optional "fit" object; version 1 files (no "fit")
+/// are still read. Readers refuse other versions.
+constexpr int kMaterialVersion = 2;
 /// The material used when none is given: assets/materials/ceramic-tile.json.
 constexpr const char* kDefaultMaterialName = "ceramic-tile";
 
@@ -30,6 +33,7 @@ struct FractureMaterial {
   std::string description;              ///< one line for a user
   FractureParams params;
   std::vector<std::string> provenance;  ///< one source note per entry: reference, values, ranges
+  std::optional<MaterialFit> fit;       ///< set by `fissure fit`
 };
 
 /// The file's text (2-space indented, keys in table order, numbers round-trip exactly). Throws

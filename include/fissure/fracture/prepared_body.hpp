@@ -41,6 +41,9 @@ public:
   /// (smoothed) tet stress when `recovered` — the raw constant tet stress of a linear tet
   /// scatters 62 % at element scale, the recovered one 7 % (stress_recovery.hpp).
   StressField initial_stress(const FractureParams& params, bool recovered = true) const;
+  /// σ⁰ of any nodal force vector (3 per node, N) on this body's supports: the fit tabulates the
+  /// fields of loads at many positions with it (fit_body.hpp).
+  StressField stress_of_forces(const Eigen::VectorXd& forces, bool recovered = true) const;
 
 private:
   FractureScenario m_scenario;

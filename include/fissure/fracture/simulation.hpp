@@ -16,6 +16,7 @@
 #include "fissure/fracture/fracture_result.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -33,6 +34,15 @@ struct SimulationOptions {
   double fixed_time_step = 0.0;
   ProgressSink* progress = nullptr;
   const CancelToken* cancel = nullptr;
+  /// Called with the cracks opened so far once their count reaches `stop_check_at`; it returns
+  /// the next count to call it at (> the current count), or 0 to stop the run there
+  /// (FractureResult::stopped_early). The fit's early rejection (fit_trial.hpp): a trial whose
+  /// pattern can no longer win is not run to the end. Empty: never called.
+  std::function<int(const std::vector<CrackSurface>& cracks)> stop_check;
+  int stop_check_at = 0;
+  /// Label the 3-D fragments at the end (FractureResult::fragments, partial_cracks). The fit
+  /// measures only the visible pattern and skips it.
+  bool label_fragments = true;
 };
 
 /// Runs the simulation on `body` from the initial stress σ⁰ (#tets × 6, Pa; e.g. the recovered

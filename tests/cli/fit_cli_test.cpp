@@ -1,0 +1,144 @@
+// fissure fit and fissure fit merge as a user runs them (issue 12): a fit on a small body writes a
+// version-2 material that fissure fracture uses and fissure compare scores; shards merge into the
+// unsharded file's bytes; a killed fit resumes to the same bytes; wrong input gets one line.
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/fracture/material_file.hpp"
+
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <csignal>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+namespace fissure {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fissure() { return test::fissure_executable().string(); }
+
+// A 300 px brick tracing: 5 rows of bricks, T junctions.
+fs::path draw_bricks(const fs::path& dir) {
+  cv::Mat bricks(300, 300, CV_8U, cv::Scalar(255));
+  for (int y = 25; y < 300; y += 50) {
+    cv::line(bricks, {0, y}, {299, y}, cv::Scalar(0), 2);
+    for (int x = ((y / 50) % 2) * 50 + 25; x < 300; x += 100) cv::line(bricks, {x, y}, {x, std::min(y + 50, 299)}, cv::Scalar(0), 2);
+  }
+  const fs::path path = dir / "bricks.png";
+  cv::imwrite(path.string(), bricks);
+  return path;
+}
+
+// The small fit every test here runs: 4K tets, 96 trials, 2 evaluation seeds (about a second).
+std::string small_fit(const fs::path& image, const std::string& extra, int trials = 96) {
+  return fissure() + " fit " + image.string() + " --body 0.5,0.5,0.02 --tets 4000 --trials " + std::to_string(trials) +
+         " --eval-seeds 2 -q " + extra;
+}
+
+void expect_failure(const test::CommandResult& r, int code, const std::string& words) {
+  EXPECT_EQ(r.exit_code, code) << r.output;
+  EXPECT_NE(r.output.find(words), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(FitCli, FitsAMaterialThatFractureUsesAndCompareScores) {
+  const fs::path dir = test::fresh_temp_dir("fit-cli");
+  const fs::path image = draw_bricks(dir);
+  const auto r = test::run_command(small_fit(image, "--method paper -o " + (dir / "bricks.json").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("paper: 96 trials"), std::string::npos) << r.output;
+  const FractureMaterial m = load_material(dir / "bricks.json");
+  EXPECT_EQ(m.name, "bricks");
+  ASSERT_TRUE(m.fit.has_value());
+  EXPECT_EQ(m.fit->method, "paper");
+  EXPECT_EQ(m.fit->trials, 96);
+  EXPECT_EQ(m.fit->error_seeds, 2);
+  EXPECT_EQ(m.params.age, 3.0);
+  EXPECT_EQ(m.fit->samples.size(), 20u);  // trials/100 within [20, 200]
+  EXPECT_FALSE(fs::exists(dir / "bricks.json.checkpoint")) << "the checkpoint of a finished fit is removed";
+  // The material fractures the fit's body into a pattern that compare scores.
+  const std::string pattern = (dir / "p.png").string();
+  const auto f = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 --tets 4000 -q --material " +
+                                   (dir / "bricks.json").string() + " --pattern " + pattern);
+  ASSERT_EQ(f.exit_code, 0) << f.output;
+  const auto c = test::run_command(fissure() + " compare " + image.string() + " " + pattern);
+  ASSERT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("Eq. 5 error"), std::string::npos) << c.output;
+}
+
+TEST(FitCli, MergedShardsAreTheUnshardedFileByteForByte) {
+  const fs::path dir = test::fresh_temp_dir("fit-cli-shards");
+  const fs::path image = draw_bricks(dir);
+  ASSERT_EQ(test::run_command(small_fit(image, "--method paper -o " + (dir / "whole.json").string())).exit_code, 0);
+  std::string shards;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string out = (dir / ("shard" + std::to_string(k) + ".json")).string();
+    const auto r = test::run_command(small_fit(image, "--method paper --threads 1 --shard " + std::to_string(k) + "/3 -o " + out));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    shards += " " + out;
+  }
+  const auto m = test::run_command(fissure() + " fit merge" + shards + " -q -o " + (dir / "merged.json").string());
+  ASSERT_EQ(m.exit_code, 0) << m.output;
+  EXPECT_EQ(read_file(dir / "merged.json"), read_file(dir / "whole.json"));
+  // Missing or repeated shards are named.
+  expect_failure(test::run_command(fissure() + " fit merge " + (dir / "shard1.json").string() + " " +
+                                   (dir / "shard2.json").string() + " -q -o " + (dir / "m2.json").string()),
+                 3, "shard 3/3 is missing");
+  expect_failure(test::run_command(fissure() + " fit merge " + (dir / "shard1.json").string() + " " +
+                                   (dir / "shard1.json").string() + " -q -o " + (dir / "m2.json").string()),
+                 3, "are both shard 1/3");
+  expect_failure(test::run_command(fissure() + " fit merge " + (dir / "whole.json").string() + " -q -o " + (dir / "m2.json").string()),
+                 4, "not a valid fit shard");
+}
+
+TEST(FitCli, BadInputGetsOneLineAndLosesNothing) {
+  const fs::path dir = test::fresh_temp_dir("fit-cli-bad");
+  const fs::path image = draw_bricks(dir);
+  const std::string out = " -o " + (dir / "m.json").string();
+  cv::imwrite((dir / "blank.png").string(), cv::Mat(200, 200, CV_8U, cv::Scalar(0)));
+  expect_failure(test::run_command(fissure() + " fit " + (dir / "blank.png").string() + " -q" + out), 3, "blank.png");
+  expect_failure(test::run_command(small_fit(image, out.substr(1), 0)), 3, "--trials 0 is outside");
+  expect_failure(test::run_command(small_fit(image, "--method paper --shard 3/2" + out)), 3, "--shard 3/2 is not K/N");
+  expect_failure(test::run_command(small_fit(image, "--shard 1/2" + out)), 3, "--shard needs --method paper");
+  expect_failure(test::run_command(small_fit(image, "-o " + (dir / "no" / "such" / "m.json").string())), 4, "m.json");
+  expect_failure(test::run_command(small_fit(image, "--resume" + out)), 3, "no checkpoint");
+  // A checkpoint left by an earlier run is never overwritten by a fresh one.
+  write_file_atomically(dir / "m.json.checkpoint", "{\"schema\": \"fissure-fit-checkpoint\", \"version\": 1, \"trials\": [[1, 0.5");
+  expect_failure(test::run_command(small_fit(image, out.substr(1))), 3, "resume it with --resume");
+  expect_failure(test::run_command(small_fit(image, "--resume" + out)), 4, "not a valid fit checkpoint");
+  EXPECT_EQ(read_file(dir / "m.json.checkpoint").substr(0, 10), "{\"schema\":");
+  EXPECT_FALSE(fs::exists(dir / "m.json"));
+}
+
+TEST(FitCli, AKilledFitResumesToTheSameBytes) {
+  const fs::path dir = test::fresh_temp_dir("fit-cli-resume");
+  const fs::path image = draw_bricks(dir);
+  const std::string fit = fissure() + " fit " + image.string() + " --body 0.5,0.5,0.02 --tets 4000 --trials 400 --eval-seeds 2 -q ";
+  ASSERT_EQ(test::run_command(fit + "-o " + (dir / "whole.json").string()).exit_code, 0);
+  // Interrupted (SIGINT): exit 6 with the finished trials kept.
+  const std::string broken = (dir / "broken.json").string();
+  const auto r = test::run_command("timeout --preserve-status -s INT 1.5 " + fit + "-o " + broken);
+  if (r.exit_code == 0) GTEST_SKIP() << "the fit finished before the interrupt on this machine";
+  ASSERT_EQ(r.exit_code, 6) << r.output;
+  EXPECT_NE(r.output.find("--resume"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(broken + ".checkpoint"));
+  // Killed outright (SIGKILL, no handler runs) while resuming: the checkpoint of the last
+  // finished block survives.
+  const auto killed = test::run_command("timeout -s KILL 1 " + fit + "--resume -o " + broken);
+  ASSERT_NE(killed.exit_code, 0) << killed.output;
+  ASSERT_TRUE(fs::exists(broken + ".checkpoint"));
+  EXPECT_FALSE(fs::exists(broken));
+  const auto resumed = test::run_command(fit + "--resume -o " + broken);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  EXPECT_EQ(read_file(broken), read_file(dir / "whole.json"));
+}
+
+}  // namespace
+}  // namespace fissure
