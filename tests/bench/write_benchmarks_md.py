@@ -14,6 +14,12 @@ import sys
 from datetime import datetime, timezone
 
 SECTION_NOTES = {
+    "bench_fit": "One fit trial (issue 12): the fit body for kz-mudcrack-300 (its aspect on a 1 m × 2 cm tile, "
+                 "the tet count asked in the name; 64 tabulated load positions), 200 prior draws at age 3, one "
+                 "thread, each timed from its draws to Eq. 5: `median_ms`, `mean_ms` run to the end, "
+                 "`*_rejecting_ms` with early rejection at the 1 % quantile of the same draws' errors (what a "
+                 "20,000-trial best-of-N keeps), `rejected_pct` of them stopped early. Target at 24K: ≤ 5 ms "
+                 "median, ≤ 8 ms mean (the paper: ~60 ms).",
     "bench_mesh": "CGAL Mesh_3 tetrahedralisation of the 1 × 1 × 0.05 m tile (facet angle 20°, perturb + exude "
                   "to 12° on the accepted refinement only), one call per size. Target: 24K tets ≤ 1 s. "
                   "`BM_TetrahedralizeWatched`: the same with a never-raised cancel token, as the CLI calls it "
