@@ -33,6 +33,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -42,6 +43,7 @@ namespace {
 
 struct FractureArgs {
   std::string input;
+  bool tets_given = false;  // --tets on the command line (else a fitted material's body count)
   std::string material = kDefaultMaterialName;
   std::map<std::size_t, double> overrides;  // table row → value given on the command line
   std::string relaxation;
@@ -91,9 +93,10 @@ Eigen::Vector3d parse_direction(const std::string& text, const std::string& flag
   return d.normalized();
 }
 
-FractureParams params_from(const FractureArgs& args, std::string& material_name) {
+FractureParams params_from(const FractureArgs& args, std::string& material_name, std::optional<MaterialFit>& fit) {
   const FractureMaterial material = load_material(find_material(args.material));
   material_name = material.name;
+  fit = material.fit;
   FractureParams p = material.params;
   for (const auto& [row, value] : args.overrides) parameter_value(p, row) = value;
   if (!args.relaxation.empty()) {
@@ -141,9 +144,15 @@ Eigen::VectorXd crack_onset(const TetMesh& mesh, const FractureResult& r) {
   return onset;
 }
 
-int run_fracture(const FractureArgs& args) {
+int run_fracture(const FractureArgs& given) {
   std::string material_name;
-  const FractureParams params = params_from(args, material_name);
+  std::optional<MaterialFit> fit;
+  const FractureParams params = params_from(given, material_name, fit);
+  FractureArgs args = given;
+  // A fitted material reproduces its fit on a tile: the fit body's resolution and the fit's load
+  // rule (a patch at a drawn cell of the top face's grid), unless --tets or --load say otherwise.
+  if (fit && !args.tets_given) args.tets = fit->body_tets;
+  const bool fitted_load_rule = fit && args.load.empty() && !args.free_body && is_tile_spec(args.input);
   for (const std::string* path : {&args.pattern, &args.stats}) {
     if (!path->empty()) check_output_path(*path);
   }
@@ -171,6 +180,10 @@ int run_fracture(const FractureArgs& args) {
     AbandonableWork work;
     mesh = mesh_from(args, progress, appearance);
     require_memory(static_solve_bytes(mesh->tet_count()), memory_limit(args.allow_large), "fracturing " + args.input);
+    if (fitted_load_rule) {
+      const double force = params.load_factor * params.density * mesh->total_volume() * kStandardGravity;
+      scenario.loads = {fitted_load(*mesh, scenario.up, fit->load_grid, fit->load_inset, force, args.seed)};
+    }
     progress.stage("preparing the body");
     prepared = std::make_unique<PreparedBody>(mesh, params.elastic(), scenario, thread_count());
     throw_if_interrupted();
@@ -234,6 +247,7 @@ int run_fracture(const FractureArgs& args) {
       {"crack_limit_reached", result.crack_limit_reached},
       {"seconds", {{"preparation", preparation_s}, {"simulation", simulation_s}, {"fragment_meshing", meshing_s}, {"export", export_s}}}};
   if (args.fragments > 0) fracture["fragments_requested"] = std::lround(args.fragments);
+  if (fitted_load_rule) fracture["fitted_load"] = scenario.loads.front().spec;
   // The closed meshes' own count: exact where the labeller probes seven points per face.
   if (!args.output.empty()) fracture["fragment_meshes"] = fragment_meshes;
   if (target.meshings > 0) fracture["fragment_meshings"] = target.meshings;  // --fragments counted meshes
@@ -333,7 +347,7 @@ void register_fracture(CLI::App& app, Action& action) {
       ->type_name("INT")
       ->check(count_in(1, 1e6));
   cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->default_val(1);
-  cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input")
+  cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input (a fitted material: its fit body's)")
       ->type_name("INT")
       ->default_val(24000)
       ->check(count_in(10, 5e7));
@@ -350,7 +364,10 @@ void register_fracture(CLI::App& app, Action& action) {
   cmd->add_flag("--raw-stress", args->raw_stress, "Use the raw per-tet stress instead of the recovered one");
   cmd->add_flag("--allow-large", args->allow_large, "Try a body whose estimated memory exceeds this machine's");
   cmd->add_flag("-q,--quiet", args->quiet, "Print nothing on success, no progress");
-  cmd->callback([&action, args] { action = [args] { return run_fracture(*args); }; });
+  cmd->callback([&action, args, cmd] {
+    args->tets_given = cmd->count("--tets") > 0;
+    action = [args] { return run_fracture(*args); };
+  });
 }
 
 }  // namespace fissure::cli

@@ -73,15 +73,7 @@ FitBody::FitBody(const FitBodyPlan& plan, const FitBodyOptions& options, const E
   m_box = m_prepared->mesh().bounding_box();
   const int g = options.load_grid;
   const Eigen::Vector3d up = m_prepared->scenario().up;
-  for (int j = 0; j < g; ++j) {
-    for (int i = 0; i < g; ++i) {
-      // Cell centres of a g × g grid over [inset, 1 − inset]².
-      const double fx = options.load_inset + (1.0 - 2.0 * options.load_inset) * (i + 0.5) / g;
-      const double fy = options.load_inset + (1.0 - 2.0 * options.load_inset) * (j + 0.5) / g;
-      m_positions.emplace_back(m_box(0, 0) + fx * (m_box(1, 0) - m_box(0, 0)),
-                               m_box(0, 1) + fy * (m_box(1, 1) - m_box(0, 1)), m_box(1, 2));
-    }
-  }
+  for (int k = 0; k < g * g; ++k) m_positions.push_back(grid_load_position(*mesh, g, options.load_inset, k));
   const std::size_t tets = static_cast<std::size_t>(mesh->tet_count());
   m_unit_fields.assign(m_positions.size() * tets * 6, 0.0f);
   // Each position's field is independent; the factor and the recovery operator are shared

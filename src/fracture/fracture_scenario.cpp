@@ -1,6 +1,7 @@
 #include "fissure/fracture/fracture_scenario.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/rng.hpp"
 #include "fissure/base/number_text.hpp"
 
 #include <Eigen/Geometry>
@@ -164,6 +165,25 @@ LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen:
               format_number(f.up.z()) + "=" + format_number(load.force.x()) + "," + format_number(load.force.y()) +
               "," + format_number(load.force.z());
   return load;
+}
+
+Eigen::Vector3d grid_load_position(const TetMesh& mesh, int grid, double inset, int k) {
+  const Eigen::Matrix<double, 2, 3> box = mesh.bounding_box();
+  const int i = k % grid, j = k / grid;
+  const double fx = inset + (1.0 - 2.0 * inset) * (i + 0.5) / grid;
+  const double fy = inset + (1.0 - 2.0 * inset) * (j + 0.5) / grid;
+  return {box(0, 0) + fx * (box(1, 0) - box(0, 0)), box(0, 1) + fy * (box(1, 1) - box(0, 1)), box(1, 2)};
+}
+
+LoadSpec fitted_load(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, double force,
+                     std::uint64_t seed) {
+  if (!(up - Eigen::Vector3d::UnitZ()).isZero(1e-12)) {
+    throw InvalidInput("a fitted material's load rule is defined on a tile's top face (+z up); give --load");
+  }
+  if (grid < 1) throw InvalidInput("the fitted load grid is empty");
+  Rng rng = Rng::derive(seed, "fit-load");
+  const int k = static_cast<int>(rng.uniform_index(static_cast<std::uint64_t>(grid) * static_cast<std::uint64_t>(grid)));
+  return patch_load(mesh, up, grid_load_position(mesh, grid, inset, k), force);
 }
 
 }  // namespace fissure

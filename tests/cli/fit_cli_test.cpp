@@ -8,12 +8,14 @@
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <csignal>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -63,11 +65,29 @@ TEST(FitCli, FitsAMaterialThatFractureUsesAndCompareScores) {
   EXPECT_EQ(m.params.age, 3.0);
   EXPECT_EQ(m.fit->samples.size(), 20u);  // trials/100 within [20, 200]
   EXPECT_FALSE(fs::exists(dir / "bricks.json.checkpoint")) << "the checkpoint of a finished fit is removed";
-  // The material fractures the fit's body into a pattern that compare scores.
+  // The material fractures the fit's body into a pattern that compare scores: with no flags, at
+  // the fit body's resolution and with a load drawn by the fit's rule (a cell of its grid).
   const std::string pattern = (dir / "p.png").string();
-  const auto f = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 --tets 4000 -q --material " +
-                                   (dir / "bricks.json").string() + " --pattern " + pattern);
-  ASSERT_EQ(f.exit_code, 0) << f.output;
+  std::set<std::string> loads;
+  for (int seed = 1; seed <= 4; ++seed) {
+    const fs::path stats = dir / ("s" + std::to_string(seed) + ".json");
+    const auto f = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 -q --material " + (dir / "bricks.json").string() +
+                                     " --seed " + std::to_string(seed) + " --pattern " + pattern + " --stats " + stats.string());
+    ASSERT_EQ(f.exit_code, 0) << f.output;
+    const nlohmann::json j = nlohmann::json::parse(read_file(stats));
+    const int tets = j["fracture"]["tets"].get<int>();
+    EXPECT_GT(tets, 3000) << "the fit body's 4000 tets, not the default 24000";
+    EXPECT_LT(tets, 5000);
+    ASSERT_TRUE(j["fracture"].contains("fitted_load")) << j.dump();
+    loads.insert(j["fracture"]["fitted_load"].get<std::string>());
+  }
+  EXPECT_GE(loads.size(), 2u) << "the load position is drawn per seed";
+  // --load and --tets still win.
+  const fs::path stats = dir / "given.json";
+  const auto given = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 -q --tets 3000 --material " +
+                                       (dir / "bricks.json").string() + " --load ball:0,0,0.02,0.05=0,0,-2000 --stats " + stats.string());
+  ASSERT_EQ(given.exit_code, 0) << given.output;
+  EXPECT_FALSE(nlohmann::json::parse(read_file(stats))["fracture"].contains("fitted_load"));
   const auto c = test::run_command(fissure() + " compare " + image.string() + " " + pattern);
   ASSERT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("Eq. 5 error"), std::string::npos) << c.output;

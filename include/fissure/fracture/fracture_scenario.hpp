@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,16 @@ LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double for
 /// pushing with `force` (N) along −up. The fit's load at a drawn position.
 LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen::Vector3d& centre, double force,
                     double patch_radius = 0.0);
+
+/// Centre of cell k (row-major, x fastest) of a `grid` × `grid` grid over [inset, 1 − inset] of
+/// the body's extent across up (+z only: the fit's tiles), at its top: the fit's load positions.
+Eigen::Vector3d grid_load_position(const TetMesh& mesh, int grid, double inset, int k);
+
+/// The load a fitted material's rule draws for a body (MaterialFit's load rule, the fit's trials'
+/// law): the patch at a cell of the grid drawn from (seed, "fit-load"), pushing with l·m·g.
+/// Throws InvalidInput when up is not +z (the rule is defined on a tile's top face).
+LoadSpec fitted_load(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, double force,
+                     std::uint64_t seed);
 
 /// Parses "+x", "-y", "z" (= "+z"), … as a unit axis. Throws InvalidInput naming the text.
 Eigen::Vector3d parse_up_axis(const std::string& text);
