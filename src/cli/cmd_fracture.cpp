@@ -44,6 +44,7 @@ namespace {
 struct FractureArgs {
   std::string input;
   bool tets_given = false;  // --tets on the command line (else a fitted material's body count)
+  bool posterior = false;   // draw the five fitted parameters from a fitted material's posterior
   std::string material = kDefaultMaterialName;
   std::map<std::size_t, double> overrides;  // table row → value given on the command line
   std::string relaxation;
@@ -147,8 +148,14 @@ Eigen::VectorXd crack_onset(const TetMesh& mesh, const FractureResult& r) {
 int run_fracture(const FractureArgs& given) {
   std::string material_name;
   std::optional<MaterialFit> fit;
-  const FractureParams params = params_from(given, material_name, fit);
+  FractureParams params = params_from(given, material_name, fit);
   FractureArgs args = given;
+  if (args.posterior) {
+    if (!fit) throw InvalidInput("--posterior needs a fitted material (written by fissure fit); " + material_name + " has no fit");
+    params = draw_from_posterior(*fit, params, args.seed);
+    // Parameters given on the command line still win over the draw.
+    for (const auto& [row, value] : args.overrides) parameter_value(params, row) = value;
+  }
   // A fitted material reproduces its fit on a tile: the fit body's resolution and the fit's load
   // rule (a patch at a drawn cell of the top face's grid), unless --tets or --load say otherwise.
   if (fit && !args.tets_given) args.tets = fit->body_tets;
@@ -248,6 +255,13 @@ int run_fracture(const FractureArgs& given) {
       {"seconds", {{"preparation", preparation_s}, {"simulation", simulation_s}, {"fragment_meshing", meshing_s}, {"export", export_s}}}};
   if (args.fragments > 0) fracture["fragments_requested"] = std::lround(args.fragments);
   if (fitted_load_rule) fracture["fitted_load"] = scenario.loads.front().spec;
+  if (args.posterior) {
+    nlohmann::ordered_json drawn = nlohmann::ordered_json::object();
+    for (const FitPrior& prior : table3_priors()) {
+      drawn[prior.name] = parameter_value(params, static_cast<std::size_t>(find_fracture_parameter(prior.name)));
+    }
+    fracture["posterior_draw"] = drawn;
+  }
   // The closed meshes' own count: exact where the labeller probes seven points per face.
   if (!args.output.empty()) fracture["fragment_meshes"] = fragment_meshes;
   if (target.meshings > 0) fracture["fragment_meshings"] = target.meshings;  // --fragments counted meshes
@@ -347,6 +361,8 @@ void register_fracture(CLI::App& app, Action& action) {
       ->type_name("INT")
       ->check(count_in(1, 1e6));
   cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->default_val(1);
+  cmd->add_flag("--posterior", args->posterior,
+                "Draw the five fitted parameters from a fitted material's posterior (per seed: similar, not identical)");
   cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input (a fitted material: its fit body's)")
       ->type_name("INT")
       ->default_val(24000)

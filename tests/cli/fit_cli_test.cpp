@@ -82,6 +82,24 @@ TEST(FitCli, FitsAMaterialThatFractureUsesAndCompareScores) {
     loads.insert(j["fracture"]["fitted_load"].get<std::string>());
   }
   EXPECT_GE(loads.size(), 2u) << "the load position is drawn per seed";
+  // --posterior: each seed draws its own five parameters from the stored samples.
+  std::set<double> rates;
+  for (int seed = 1; seed <= 4; ++seed) {
+    const fs::path drawn = dir / ("d" + std::to_string(seed) + ".json");
+    const auto d = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 -q --posterior --material " +
+                                     (dir / "bricks.json").string() + " --seed " + std::to_string(seed) + " --stats " + drawn.string());
+    ASSERT_EQ(d.exit_code, 0) << d.output;
+    const nlohmann::json j = nlohmann::json::parse(read_file(drawn));
+    const double rate = j["fracture"]["posterior_draw"]["stress_rate"].get<double>();
+    bool is_sample = false;
+    for (const auto& sample : m.fit->samples) is_sample = is_sample || sample[0] == rate;
+    EXPECT_TRUE(is_sample) << rate << " is not one of the posterior's samples";
+    rates.insert(rate);
+  }
+  EXPECT_GE(rates.size(), 2u);
+  const auto plain = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 -q --posterior --stats -");
+  EXPECT_EQ(plain.exit_code, 3) << plain.output;
+  EXPECT_NE(plain.output.find("--posterior needs a fitted material"), std::string::npos) << plain.output;
   // --load and --tets still win.
   const fs::path stats = dir / "given.json";
   const auto given = test::run_command(fissure() + " fracture tile:0.5,0.5,0.02 -q --tets 3000 --material " +

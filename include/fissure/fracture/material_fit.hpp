@@ -41,4 +41,12 @@ struct MaterialFit {
   std::vector<double> weights;     ///< one per sample, summing to 1
 };
 
+struct FractureParams;
+
+/// `params` with its five fitted parameters drawn from the fit's posterior: a sample picked by
+/// weight from the stream (seed, "fit-posterior"), so every object fractured with its own seed gets
+/// its own parameters ("similar, not identical", paper §6.2). Throws InvalidInput when the fit has
+/// no samples or a drawn value is outside the parameter's range.
+FractureParams draw_from_posterior(const MaterialFit& fit, const FractureParams& params, std::uint64_t seed);
+
 }  // namespace fissure
