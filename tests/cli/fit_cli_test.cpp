@@ -156,6 +156,10 @@ TEST(FitCli, BadInputGetsOneLineAndLosesNothing) {
 }
 
 TEST(FitCli, AKilledFitResumesToTheSameBytes) {
+#if defined(__SANITIZE_ADDRESS__)
+  // Timed signals (1–1.5 s) land before the first block under the sanitizers' ~10× slowdown.
+  GTEST_SKIP() << "interrupt timings are calibrated for the release build";
+#endif
   const fs::path dir = test::fresh_temp_dir("fit-cli-resume");
   const fs::path image = draw_bricks(dir);
   const std::string fit = fissure() + " fit " + image.string() + " --body 0.5,0.5,0.02 --tets 4000 --trials 400 --eval-seeds 2 -q ";
