@@ -17,7 +17,6 @@
 #include "fissure/fit/fit_files.hpp"
 #include "fissure/mesh/tile.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -136,8 +136,8 @@ std::vector<Particle> best_of_prior(Runner& runner, const FitOptions& o, long lo
     const double threshold = pth_error(errors, p);
     std::vector<Job> jobs;
     for (long long i = b * o.block; i < std::min(n, (b + 1) * o.block); ++i) {
-      const std::uint64_t key = generation == 0 && o.method == FitMethod::Paper ? static_cast<std::uint64_t>(i)
-                                                                                : smc_key(0, static_cast<std::uint64_t>(i));
+      // Prior draws are trials 0, 1, … in both methods (SMC's generation 0: smc_key(0, i) = i).
+      const std::uint64_t key = static_cast<std::uint64_t>(i);
       jobs.push_back({key, prior_draw(o.seed, static_cast<std::uint64_t>(i)), threshold});
     }
     const std::vector<TrialRecord> out = runner.run(jobs, generation);

@@ -10,6 +10,8 @@
 #include "fissure/exemplar/exemplar_analysis.hpp"
 #include "fissure/fit/fit_trial.hpp"
 
+#include "provisional_exemplar.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -52,12 +54,8 @@ void BM_FitTrial(benchmark::State& state) {
   if (exemplar.fragment_areas.empty()) {
     // No shared data: the exemplar is a simulated pattern at the box's centre (a provisional
     // fragment scale of 0.15 m sets the box).
-    PatternStats provisional;
-    provisional.fragment_areas = {0.0225};
-    provisional.fragment_area_hist = Histogram::make(-6.0, 0.0, 24);
-    provisional.crack_length_hist = Histogram::make(-4.0, 0.0, 16);
-    provisional.junction_density_hist = Histogram::make(0.0, 5.0, 20);
-    const FitProblem p = make_fit_problem(provisional, base, body);
+    // 44 fragments on the 1 m² tile: 0.15 m.
+    const FitProblem p = make_fit_problem(test::provisional_exemplar(44), base, body);
     run_trial(p, UnitPoint{0.5, 0.5, 0.5, 0.5, 0.5}, 1, 0, std::numeric_limits<double>::infinity(), &exemplar);
   }
   const FitProblem problem = make_fit_problem(exemplar, base, body);

@@ -3,6 +3,8 @@
 
 #include "fissure/fit/abc_fit.hpp"
 
+#include "provisional_exemplar.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,12 +40,7 @@ TEST(FitRecovery, KnownParametersAreRecoveredWithinTheSeedSpread) {
   auto body = std::make_shared<const FitBody>(plan_fit_body(10, 1.0, o), o, base.elastic(), 2);
   // The box needs an exemplar's fragment scale: a provisional one (0.1 m) fixes it, and the known
   // pattern is then fitted in that same box.
-  PatternStats provisional;
-  provisional.fragment_areas = std::vector<double>(25, 0.04);
-  provisional.fragment_area_hist = Histogram::make(-6.0, 0.0, 24);
-  provisional.crack_length_hist = Histogram::make(-4.0, 0.0, 16);
-  provisional.junction_density_hist = Histogram::make(0.0, 5.0, 20);
-  const FitProblem bootstrap = make_fit_problem(provisional, base, body);
+  const FitProblem bootstrap = make_fit_problem(test::provisional_exemplar(25), base, body);
   const UnitPoint known = {0.8, 0.3, 0.3, 0.3, 0.5};  // a dense pattern: p*'s own seed spread is ±0.06
   PatternStats exemplar;
   run_trial(bootstrap, known, 11, 0, std::numeric_limits<double>::infinity(), &exemplar);

@@ -14,6 +14,7 @@
 #include "fissure/fracture/simulation.hpp"
 #include "fissure/fem/load.hpp"
 
+#include "provisional_exemplar.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -53,13 +54,8 @@ FractureParams fit_base() {
 // known (the self-recovery setting). The box needs an exemplar first: a provisional one sets the
 // fragment scale, which the known pattern then keeps.
 FitProblem problem_from_known(const UnitPoint& u, std::uint64_t seed, PatternStats* exemplar_out = nullptr) {
-  PatternStats provisional;
-  provisional.source = "provisional";
-  provisional.fragment_areas = std::vector<double>(25, 0.04);  // fragment scale 0.1 m on 0.25 m²
-  provisional.fragment_area_hist = Histogram::make(-6.0, 0.0, 24);
-  provisional.crack_length_hist = Histogram::make(-4.0, 0.0, 16);
-  provisional.junction_density_hist = Histogram::make(0.0, 5.0, 20);
-  FitProblem p = make_fit_problem(provisional, fit_base(), small_body());
+  // 25 fragments on 0.25 m²: a fragment scale of 0.1 m.
+  FitProblem p = make_fit_problem(test::provisional_exemplar(25), fit_base(), small_body());
   PatternStats stats;
   const TrialOutcome t = run_trial(p, u, seed, 0, std::numeric_limits<double>::infinity(), &stats);
   EXPECT_GT(t.fragments, 3) << "the known parameters should break the tile";
@@ -152,8 +148,11 @@ TEST(FitTrial, LowerBoundHoldsAndRejectionIsExact) {
     // under one at or above its error it must finish, scoring exactly as unrejected (a bound
     // that overshot would reject it here).
     const TrialOutcome below = run_trial(problem, u, 5, i, 0.5 * full.error);
-    if (below.rejected) ++rejected;
-    else EXPECT_EQ(below.error, full.error);
+    if (below.rejected) {
+      ++rejected;
+    } else {
+      EXPECT_EQ(below.error, full.error);
+    }
     const TrialOutcome above = run_trial(problem, u, 5, i, full.error * 1.0000001 + 1e-12);
     EXPECT_FALSE(above.rejected) << "trial " << i;
     EXPECT_EQ(above.error, full.error);
@@ -206,7 +205,9 @@ TEST(AbcFit, SameResultAtOneAndTwoThreads) {
     EXPECT_EQ(one.trials, 160);
     EXPECT_EQ(one.population.size(), 16u);
     EXPECT_EQ(one.evaluation_errors.size(), 3u);
-    if (method == FitMethod::Smc) EXPECT_GE(one.generations, 2);
+    if (method == FitMethod::Smc) {
+      EXPECT_GE(one.generations, 2);
+    }
   }
 }
 
