@@ -178,13 +178,85 @@ void weighted_moments(const std::vector<Particle>& pop, Eigen::Matrix<double, 5,
   if (wsum > 0.0) cov /= wsum;
 }
 
+// Keys of extra repeats of population particles (generation 0's re-scoring and the final race):
+// the last stage number, numbered in the order they are issued.
+constexpr std::uint64_t kRepeatStage = (std::uint64_t{1} << (64 - kGenerationShift)) - 1;
+
+// Adds `repeats[i]` more trials to pop[i] (with their own streams) and makes its error the mean
+// over all of them.
+void add_repeats(Runner& runner, std::vector<Particle>& pop, const std::vector<int>& repeats,
+                 std::uint64_t& next_repeat, int block, int generation) {
+  std::vector<Job> jobs;
+  std::vector<std::size_t> owner;
+  for (std::size_t i = 0; i < pop.size(); ++i) {
+    for (int r = 0; r < repeats[i]; ++r) {
+      jobs.push_back({smc_key(static_cast<int>(kRepeatStage), next_repeat++), pop[i].u, kInf});
+      owner.push_back(i);
+    }
+  }
+  for (std::size_t b = 0; b < jobs.size(); b += static_cast<std::size_t>(block)) {
+    const std::vector<Job> slice(jobs.begin() + static_cast<std::ptrdiff_t>(b),
+                                 jobs.begin() + static_cast<std::ptrdiff_t>(std::min(jobs.size(), b + static_cast<std::size_t>(block))));
+    const std::vector<TrialRecord> out = runner.run(slice, generation);
+    for (std::size_t k = 0; k < slice.size(); ++k) {
+      const std::size_t i = owner[b + k];
+      pop[i].error = (pop[i].error * pop[i].samples + out[k].error) / (pop[i].samples + 1);
+      ++pop[i].samples;
+    }
+  }
+}
+
+// The final race (successive halving): the best K particles share what is left of the budget in
+// rounds; each round gives every one still in the race the same number of further trials, and the
+// better half by mean goes on. The winner leads the population. Picking the lowest of P two-seed
+// means favours a lucky particle; the race spends the last trials where the choice is made.
+void race(Runner& runner, const FitOptions& o, std::vector<Particle>& pop, std::uint64_t& next_repeat, int generation) {
+  const auto rounds_for = [](std::size_t k) {
+    int rounds = 0;
+    for (; k > 1; k = (k + 1) / 2) ++rounds;
+    return rounds;
+  };
+  // As many racers as the budget gives each at least one trial per round (16 at most).
+  std::size_t k = std::min<std::size_t>(pop.size(), 16);
+  while (k > 1 && (o.trials - runner.trials()) / rounds_for(k) / static_cast<long long>(k) < 1) k = (k + 1) / 2;
+  std::vector<std::size_t> in_race(k);
+  std::iota(in_race.begin(), in_race.end(), std::size_t{0});
+  for (int rounds = rounds_for(k); rounds > 0 && in_race.size() > 1; --rounds) {
+    const long long each = (o.trials - runner.trials()) / rounds / static_cast<long long>(in_race.size());
+    if (each < 1) break;
+    std::vector<Particle> racers;
+    for (std::size_t i : in_race) racers.push_back(pop[i]);
+    add_repeats(runner, racers, std::vector<int>(racers.size(), static_cast<int>(each)), next_repeat, o.block, generation);
+    for (std::size_t r = 0; r < racers.size(); ++r) pop[in_race[r]] = racers[r];
+    std::stable_sort(in_race.begin(), in_race.end(), [&](std::size_t a, std::size_t b) { return by_error(pop[a], pop[b]); });
+    in_race.resize((in_race.size() + 1) / 2);
+  }
+  const std::uint64_t winner = in_race.empty() ? 0 : pop[in_race.front()].key;
+  std::sort(pop.begin(), pop.end(), by_error);
+  if (in_race.empty()) return;
+  const auto it = std::find_if(pop.begin(), pop.end(), [&](const Particle& q) { return q.key == winner; });
+  std::rotate(pop.begin(), it, it + 1);
+}
+
 std::vector<Particle> smc(Runner& runner, const FitOptions& o, int& generations) {
   const std::size_t p = static_cast<std::size_t>(o.population_size());
-  const long long first = std::max<long long>(o.trials / 4, 5 * static_cast<long long>(p));
-  std::vector<Particle> pop = best_of_prior(runner, o, std::min(first, o.trials), p, [](long long) { return true; }, 0);
-  generations = 1;
   const int seeds = std::max(1, o.smc_seeds);
-  for (int g = 1; runner.trials() < o.trials && pop.size() >= 2; ++g) {
+  // The final race's share is kept back from the generations.
+  const long long race_budget = static_cast<long long>(std::floor(o.smc_race_share * static_cast<double>(o.trials)));
+  const long long generations_budget = o.trials - race_budget;
+  const long long first = std::max<long long>(o.trials / 4, 5 * static_cast<long long>(p));
+  std::vector<Particle> pop = best_of_prior(runner, o, std::min(first, generations_budget), p, [](long long) { return true; }, 0);
+  generations = 1;
+  std::uint64_t next_repeat = 0;
+  // Generation 0's errors are single trials, the minima of many: a lucky seed sits on top. Its
+  // population is re-scored on `seeds` trials each, so ε and every later comparison are seed
+  // means on the same footing (without it, ε is too low for any candidate's mean and the
+  // generations stop at once).
+  if (seeds > 1 && runner.trials() + static_cast<long long>(pop.size()) * (seeds - 1) <= generations_budget) {
+    add_repeats(runner, pop, std::vector<int>(pop.size(), seeds - 1), next_repeat, o.block, 0);
+    std::sort(pop.begin(), pop.end(), by_error);
+  }
+  for (int g = 1; runner.trials() < generations_budget && pop.size() >= 2; ++g) {
     std::vector<double> errors;
     for (const Particle& q : pop) errors.push_back(q.error);
     std::sort(errors.begin(), errors.end());
@@ -205,7 +277,7 @@ std::vector<Particle> smc(Runner& runner, const FitOptions& o, int& generations)
     const long long per_block = std::max(1, o.block / seeds);
     while (accepted.size() < p) {
       // One block of candidates, each `seeds` trials; the last block is cut to the budget.
-      const long long count = std::min<long long>(per_block, (o.trials - runner.trials()) / seeds);
+      const long long count = std::min<long long>(per_block, (generations_budget - runner.trials()) / seeds);
       if (count <= 0) break;
       std::vector<UnitPoint> points;
       std::vector<Job> jobs;
@@ -239,7 +311,7 @@ std::vector<Particle> smc(Runner& runner, const FitOptions& o, int& generations)
         double sum = 0.0;
         for (int s = 0; s < seeds; ++s) sum += out[static_cast<std::size_t>(i * seeds + s)].error;
         const double score = sum / seeds;
-        if (score <= epsilon) accepted.push_back({points[static_cast<std::size_t>(i)], score, 0.0, smc_key(g, static_cast<std::uint64_t>(candidates + i))});
+        if (score <= epsilon) accepted.push_back({points[static_cast<std::size_t>(i)], score, 0.0, smc_key(g, static_cast<std::uint64_t>(candidates + i)), seeds});
       }
       candidates += count;
     }
@@ -270,6 +342,7 @@ std::vector<Particle> smc(Runner& runner, const FitOptions& o, int& generations)
     const double acceptance = static_cast<double>(p) / static_cast<double>(candidates);
     if (acceptance < o.smc_min_acceptance) break;
   }
+  race(runner, o, pop, next_repeat, generations);
   return pop;
 }
 
@@ -286,7 +359,7 @@ void finish(const FitProblem& problem, const FitOptions& o, FitResult& r) {
     r.posterior_mean[static_cast<std::size_t>(k)] = mean(k);
     r.posterior_stddev[static_cast<std::size_t>(k)] = std::sqrt(std::max(0.0, cov(k, k)));
   }
-  const std::uint64_t evaluation_seed = Rng::derive(o.seed, "fit-evaluation").next_u64();
+  const std::uint64_t evaluation_seed = fit_evaluation_seed(o.seed);
   r.evaluation_errors.assign(static_cast<std::size_t>(o.evaluation_seeds), 0.0);
   parallel_for_dynamic(r.evaluation_errors.size(), o.threads, [&](std::size_t i) {
     if (o.cancel) o.cancel->throw_if_cancelled();
@@ -301,6 +374,8 @@ void finish(const FitProblem& problem, const FitOptions& o, FitResult& r) {
 }
 
 }  // namespace
+
+std::uint64_t fit_evaluation_seed(std::uint64_t seed) { return Rng::derive(seed, "fit-evaluation").next_u64(); }
 
 const char* to_string(FitMethod method) { return method == FitMethod::Paper ? "paper" : "smc"; }
 
@@ -323,6 +398,7 @@ std::vector<std::string> FitOptions::problems() const {
   if (block < 1) out.push_back("the block size " + std::to_string(block) + " is below 1");
   if (evaluation_seeds < 0 || evaluation_seeds > 1000) out.push_back("the evaluation seeds " + std::to_string(evaluation_seeds) + " are outside [0, 1000]");
   if (smc_seeds < 1 || smc_seeds > 64) out.push_back("the SMC seeds per candidate " + std::to_string(smc_seeds) + " are outside [1, 64]");
+  if (!(smc_race_share >= 0.0 && smc_race_share <= 0.5)) out.push_back("the SMC race share " + format_number(smc_race_share) + " is outside [0, 0.5]");
   if (!(smc_quantile > 0.0 && smc_quantile <= 1.0)) out.push_back("the SMC quantile " + format_number(smc_quantile) + " is outside (0, 1]");
   if (shard.count < 1 || shard.index < 1 || shard.index > shard.count) {
     out.push_back("--shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count) +

@@ -26,7 +26,8 @@ constexpr const char* kShardSchema = "fissure-fit-shard";
 ojson settings_object(const FitSettings& s) {
   ojson j = ojson::object();
   j["schema"] = kSettingsSchema;
-  j["version"] = 1;
+  // 2: SMC re-scores generation 0 and ends with a race (smc_race_share).
+  j["version"] = 2;
   j["exemplar_name"] = s.exemplar_name;
   j["exemplar"] = ojson::parse(pattern_stats_to_json(s.exemplar));
   j["aspect"] = s.aspect;
@@ -46,13 +47,13 @@ ojson settings_object(const FitSettings& s) {
   j["method"] = {{"method", to_string(o.method)}, {"trials", o.trials}, {"seed", o.seed},
                  {"population", o.population_size()}, {"block", o.block}, {"evaluation_seeds", o.evaluation_seeds},
                  {"smc_seeds", o.smc_seeds}, {"smc_quantile", o.smc_quantile},
-                 {"smc_min_acceptance", o.smc_min_acceptance}};
+                 {"smc_min_acceptance", o.smc_min_acceptance}, {"smc_race_share", o.smc_race_share}};
   j["output_name"] = s.output_name;
   return j;
 }
 
 FitSettings settings_from(const json& j, const std::string& source) {
-  if (j.at("schema") != kSettingsSchema || j.at("version") != 1) throw IoError(source + ": fit settings of another kind or version");
+  if (j.at("schema") != kSettingsSchema || j.at("version") != 2) throw IoError(source + ": fit settings of another kind or version");
   FitSettings s;
   s.exemplar_name = j.at("exemplar_name").get<std::string>();
   s.exemplar = pattern_stats_from_json(j.at("exemplar").dump(), source + " (exemplar)");
@@ -85,6 +86,7 @@ FitSettings settings_from(const json& j, const std::string& source) {
   s.options.smc_seeds = m.at("smc_seeds").get<int>();
   s.options.smc_quantile = m.at("smc_quantile").get<double>();
   s.options.smc_min_acceptance = m.at("smc_min_acceptance").get<double>();
+  s.options.smc_race_share = m.at("smc_race_share").get<double>();
   s.output_name = j.at("output_name").get<std::string>();
   const auto problems = s.options.problems();
   if (!problems.empty()) throw IoError(source + ": " + problems.front());
@@ -112,8 +114,22 @@ FitSettings fit_settings_from_json(const std::string& text, const std::string& s
   return parse_file(text, "fit settings", source, [&](const json& j) { return settings_from(j, source); });
 }
 
+void set_fit_exemplar(FitSettings& settings, const ExemplarAnalysis& exemplar, const std::filesystem::path& image,
+                      const std::string& name) {
+  const int fragments = exemplar.stats.fragment_count;
+  if (fragments < 2) {
+    throw InvalidInput(image.string() + ": the traced image has " + std::to_string(fragments) + " fragment" +
+                       (fragments == 1 ? "" : "s") + "; a fit needs a crack pattern that splits it into at least 2");
+  }
+  settings.exemplar = pattern_stats_from_json(pattern_stats_to_json(exemplar.stats), image.string());
+  const Eigen::Vector2d frame = exemplar.graph.frame_max - exemplar.graph.frame_min;
+  settings.aspect = frame.x() / frame.y();
+  settings.exemplar_name = image.filename().string();
+  settings.output_name = name.empty() ? image.stem().string() : name;
+}
+
 Hash128 fit_settings_hash(const FitSettings& settings) {
-  return ContentHasher().add(std::string_view("fissure-fit-settings-1")).add(fit_settings_to_json(settings)).finish();
+  return ContentHasher().add(std::string_view("fissure-fit-settings-2")).add(fit_settings_to_json(settings)).finish();
 }
 
 FitProblem make_fit_problem(const FitSettings& settings, int threads, ProgressSink* progress, const CancelToken* cancel) {

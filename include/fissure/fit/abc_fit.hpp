@@ -5,13 +5,15 @@
 ///   lowest Eq. 5 error wins. Beyond the paper it also keeps the best P trials (the accepted
 ///   population, the posterior's samples).
 /// - FitMethod::Smc, ABC population Monte Carlo (Beaumont et al. 2009; paper-gaps §8): generation
-///   0 is a quarter of the budget drawn from the prior, its best P the first population; each
-///   next generation's threshold ε is the median error of the last population, and candidates
-///   come from a particle (picked by weight) plus a Gaussian step of twice the population's
-///   weighted covariance, each scored by the mean error over `smc_seeds` trials with their own
-///   draws, so a lucky seed does not win; the first P candidates under ε (in proposal order)
-///   make the next population, weighted 1 / Σ_j w_j N(θ; θ_j, Σ). It stops when the budget is
-///   spent or a generation accepts fewer than 2 % of its candidates.
+///   0 is a quarter of the budget drawn from the prior, its best P the first population, each
+///   re-scored as the mean over `smc_seeds` trials; each next generation's threshold ε is the
+///   median score of the last population, and candidates come from a particle (picked by weight)
+///   plus a Gaussian step of twice the population's weighted covariance, each scored by the mean
+///   error over `smc_seeds` trials with their own draws, so a lucky seed does not win; the first
+///   P candidates under ε (in proposal order) make the next population, weighted
+///   1 / Σ_j w_j N(θ; θ_j, Σ). The generations end when their budget (all but `smc_race_share`)
+///   is spent or one accepts fewer than `smc_min_acceptance` of its candidates; the rest of the
+///   budget races the best 16 particles by successive halving, and the race's winner is chosen.
 ///
 /// Both are deterministic: every trial draws from its own stream (seed, key), trials run in
 /// blocks of a fixed size whose order never depends on the thread count, and every threshold used
@@ -68,6 +70,7 @@ struct FitOptions {
   int smc_seeds = 2;              ///< trials per candidate from generation 1
   double smc_quantile = 0.5;      ///< ε_t = this quantile of the last population's errors
   double smc_min_acceptance = 0.02;
+  double smc_race_share = 0.1;    ///< of the budget kept for the final race of the best particles
   FitShard shard;                 ///< Paper only: run blocks b with b mod N = K − 1
   const TrialRecords* resume = nullptr;  ///< finished trials of an earlier run (same settings)
   /// Called after every block with its finished trials (the checkpoint's hook), also with the
@@ -86,6 +89,7 @@ struct Particle {
   double error = 0.0;   ///< the method's score: one trial (Paper, SMC generation 0) or a seed mean
   double weight = 1.0;  ///< normalised over the population
   std::uint64_t key = 0;
+  int samples = 1;      ///< trials in the error's mean
 };
 
 struct FitResult {
@@ -93,13 +97,18 @@ struct FitResult {
   long long trials = 0;           ///< trials run, resumed ones included
   long long rejected = 0;         ///< of which stopped early
   int generations = 0;
-  std::vector<Particle> population;  ///< sorted by error, then key
+  std::vector<Particle> population;  ///< the chosen particle first, the rest by error, then key
   Particle best;
   FractureParams params;             ///< best's parameters (the base's other values)
-  std::vector<double> evaluation_errors;  ///< best re-simulated on fresh streams
+  /// best re-simulated as trials 0, 1, … of the fresh stream fit_evaluation_seed(seed)
+  std::vector<double> evaluation_errors;
   double error_mean = 0.0, error_stddev = 0.0;
   UnitPoint posterior_mean{}, posterior_stddev{};  ///< weighted, unit-cube coordinates
 };
+
+/// The seed of the evaluation's trials: run_trial(problem, best.u, fit_evaluation_seed(seed), i)
+/// is evaluation i (a seed of its own, derived from the fit's, so no trial of the fit is reused).
+std::uint64_t fit_evaluation_seed(std::uint64_t seed);
 
 /// Runs the fit. A shard (Paper only) returns its population without the evaluation
 /// (evaluation_errors empty): merge shards with merge_fit_shards. Throws InvalidInput for bad

@@ -7,6 +7,7 @@
 /// where files go). Its hash keys the checkpoint and ties shards together: a checkpoint or shard
 /// of other settings is refused by name, never silently mixed in.
 #include "fissure/base/content_hash.hpp"
+#include "fissure/exemplar/exemplar_analysis.hpp"
 #include "fissure/fit/abc_fit.hpp"
 #include "fissure/fracture/material_file.hpp"
 
@@ -26,6 +27,13 @@ struct FitSettings {
   FitOptions options;         ///< the method's settings (threads, shard, hooks ignored)
   std::string output_name;    ///< the fitted material's name
 };
+
+/// Sets the exemplar's part of `settings` from its analysis: the statistics (through their JSON
+/// form, so a merge, which reads them back from shard files, starts from the very same numbers),
+/// the frame's aspect, the image's file name and the output name (`name`, or the image's stem).
+/// Throws InvalidInput naming `image` when the pattern has fewer than 2 fragments.
+void set_fit_exemplar(FitSettings& settings, const ExemplarAnalysis& exemplar, const std::filesystem::path& image,
+                      const std::string& name = {});
 
 /// The settings as JSON text (canonical: the hash is of this text) and back. The exemplar's
 /// statistics go through pattern_stats_to_json, so a reader gets them bit for bit.
