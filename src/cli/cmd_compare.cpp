@@ -7,7 +7,9 @@
 #include "interruption.hpp"
 #include "terminal_progress.hpp"
 
+#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/number_text.hpp"
+#include "fissure/exemplar/comparison_report.hpp"
 #include "fissure/exemplar/similarity.hpp"
 #include "fissure/exemplar/stats_json.hpp"
 
@@ -19,23 +21,41 @@ namespace {
 struct CompareArgs {
   std::string a, b;
   std::string weights = "3,1,1";
+  std::string report;
   double max_megapixels = 64.0;
   bool json = false;
   bool quiet = false;
 };
 
+bool is_stats_file(const std::string& input) { return std::filesystem::path(input).extension() == ".json"; }
+
 PatternStats stats_of(const std::string& input, const CompareArgs& args, TerminalProgress& progress) {
   const std::filesystem::path path(input);
-  if (path.extension() == ".json") return load_pattern_stats(path);
+  if (is_stats_file(input)) return load_pattern_stats(path);
   progress.stage("analysing " + input);
   ExemplarAnalysisOptions options;
   options.image.max_pixels = max_pixels(args.max_megapixels);
   return analyze_image(path, options).stats;
 }
 
+// The report shows each input's drawing (none for statistics JSON) above the histograms.
+void write_report(const CompareArgs& args, const PatternStats& a, const PatternStats& b, const SimilarityWeights& weights) {
+  ComparisonReport report;
+  report.title = "fissure compare: Eq. 5 between two crack patterns";
+  report.left_label = "A: " + std::filesystem::path(args.a).filename().string();
+  report.right_label = "B: " + std::filesystem::path(args.b).filename().string();
+  if (!is_stats_file(args.a)) report.left_image = load_grey_image(args.a, max_pixels(args.max_megapixels));
+  if (!is_stats_file(args.b)) report.right_image = load_grey_image(args.b, max_pixels(args.max_megapixels));
+  report.left = a;
+  report.right = b;
+  report.weights = weights;
+  write_comparison_report(args.report, report);
+}
+
 int run_compare(const CompareArgs& args) {
   const auto w = parse_number_list(args.weights, "--weights", 3, "fragment,crack,junction");
   const SimilarityWeights weights{w[0], w[1], w[2]};
+  if (!args.report.empty()) check_output_path(args.report);
   TerminalProgress progress(args.quiet);
   PatternStats a, b;
   {
@@ -46,6 +66,7 @@ int run_compare(const CompareArgs& args) {
   throw_if_interrupted();
   progress.clear();
   const Similarity s = pattern_similarity(a, b, weights);
+  if (!args.report.empty()) write_report(args, a, b, weights);
   const auto g = [](double x) { return format_number(x); };
   if (args.json) {
     std::printf("{\"error\": %s, \"emd_fragment\": %s, \"emd_crack\": %s, \"emd_junction\": %s, \"weights\": [%s, %s, %s]}\n",
@@ -69,6 +90,7 @@ void register_compare(CLI::App& app, Action& action) {
   cmd->add_option("A", args->a, "Traced image or statistics JSON (from fissure analyze --json)")->required();
   cmd->add_option("B", args->b, "Traced image or statistics JSON")->required();
   cmd->add_option("--weights", args->weights, "Weights of the fragment, crack and junction terms")->default_val("3,1,1");
+  cmd->add_option("--report", args->report, "Also draw both patterns and their three histograms overlaid into this PNG");
   add_max_megapixels_option(*cmd, args->max_megapixels);
   cmd->add_flag("--json", args->json, "Print the result as JSON");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr");

@@ -15,6 +15,7 @@
 #include "fissure/base/thread_count.hpp"
 #include "fissure/exemplar/stats_json.hpp"
 #include "fissure/fit/fit_files.hpp"
+#include "fissure/fit/fit_report.hpp"
 #include "fissure/mesh/tile.hpp"
 
 #include <cmath>
@@ -41,6 +42,7 @@ struct FitArgs {
   std::string name;
   std::string output;
   std::string checkpoint;
+  std::string report;
   bool resume = false;
   std::string shard;
   double max_megapixels = 64.0;
@@ -134,6 +136,9 @@ int run_fit_command(const FitArgs& args) {
   settings.options.threads = thread_count();
   if (!args.shard.empty()) settings.options.shard = parse_shard(args.shard);
   const bool sharded = settings.options.shard.count > 1;
+  if (sharded && !args.report.empty()) {
+    throw InvalidInput("--report draws the fit's winner, which a shard does not know: give --report to fissure fit merge");
+  }
   {
     const auto problems = settings.options.problems();
     if (!problems.empty()) throw InvalidInput(problems.front());
@@ -151,6 +156,7 @@ int run_fit_command(const FitArgs& args) {
   check_output_path(args.output);
   const fs::path checkpoint = args.checkpoint.empty() ? fs::path(args.output + ".checkpoint") : fs::path(args.checkpoint);
   check_output_path(checkpoint);
+  if (!args.report.empty()) check_output_path(args.report);
 
   TerminalProgress progress(args.quiet);
   settings.base = load_material(find_material(args.base));
@@ -160,20 +166,8 @@ int run_fit_command(const FitArgs& args) {
     progress.stage("analysing " + args.image);
     ExemplarAnalysisOptions options;
     options.image.max_pixels = max_pixels(args.max_megapixels);
-    const ExemplarAnalysis exemplar = analyze_image(args.image, options);
-    if (exemplar.stats.fragment_count < 2) {
-      throw InvalidInput(args.image + ": the traced image has " + std::to_string(exemplar.stats.fragment_count) +
-                         " fragment" + (exemplar.stats.fragment_count == 1 ? "" : "s") +
-                         "; a fit needs a crack pattern that splits it into at least 2");
-    }
-    // Through the JSON form, so a merge (which reads the statistics back from shard files)
-    // starts from the very same numbers.
-    settings.exemplar = pattern_stats_from_json(pattern_stats_to_json(exemplar.stats), args.image);
-    const Eigen::Vector2d frame = exemplar.graph.frame_max - exemplar.graph.frame_min;
-    settings.aspect = frame.x() / frame.y();
+    set_fit_exemplar(settings, analyze_image(args.image, options), args.image, args.name);
   }
-  settings.exemplar_name = fs::path(args.image).filename().string();
-  settings.output_name = args.name.empty() ? fs::path(args.image).stem().string() : args.name;
   const Hash128 hash = fit_settings_hash(settings);
 
   TrialRecords resumed;
@@ -221,12 +215,22 @@ int run_fit_command(const FitArgs& args) {
     print_summary(settings, problem, result, args.output, watch.milliseconds() / 1000);
   }
   fs::remove(checkpoint, error);
+  if (!args.report.empty()) {
+    progress.stage("drawing the report");
+    write_fit_report(args.report, load_grey_image(args.image, max_pixels(args.max_megapixels)), settings, problem, result);
+    progress.clear();
+    std::printf("wrote %s\n", args.report.c_str());
+  }
   return kExitOk;
 }
 
 int run_merge_command(const FitArgs& args) {
   Stopwatch watch;
   check_output_path(args.output);
+  if (!args.report.empty()) {
+    if (args.image.empty()) throw InvalidInput("--report needs --image: the shard files keep only the exemplar's statistics");
+    check_output_path(args.report);
+  }
   std::vector<FitShardFile> shards;
   for (const std::string& path : args.shards) shards.push_back(load_fit_shard(path));
   const Hash128 hash = fit_settings_hash(shards.front().settings);
@@ -266,6 +270,10 @@ int run_merge_command(const FitArgs& args) {
   progress.clear();
   save_material(args.output, fitted_material(settings, problem, result));
   print_summary(settings, problem, result, args.output, watch.milliseconds() / 1000);
+  if (!args.report.empty()) {
+    write_fit_report(args.report, load_grey_image(args.image, max_pixels(args.max_megapixels)), settings, problem, result);
+    std::printf("wrote %s\n", args.report.c_str());
+  }
   return kExitOk;
 }
 
@@ -295,6 +303,7 @@ void register_fit(CLI::App& app, Action& action) {
   cmd->add_option("--name", args->name, "Name of the fitted material (default: the image's file name without extension)");
   cmd->add_option("-o,--output", args->output, "Fitted material file (with --shard: the shard's result); required");
   cmd->add_option("--checkpoint", args->checkpoint, "Checkpoint file (default: OUTPUT.checkpoint; removed on success)");
+  cmd->add_option("--report", args->report, "Also draw the exemplar beside a fitted pattern, their histograms overlaid (PNG)");
   cmd->add_flag("--resume", args->resume, "Go on from the checkpoint of an interrupted run of the same command");
   cmd->add_option("--shard", args->shard, "Run slice K of N of the trials (paper method; join with fissure fit merge)");
   add_max_megapixels_option(*cmd, args->max_megapixels);
@@ -305,6 +314,8 @@ void register_fit(CLI::App& app, Action& action) {
   add_threads_option(*merge);
   merge->add_option("SHARD", merge_args->shards, "Shard files written by fissure fit --shard K/N")->required();
   merge->add_option("-o,--output", merge_args->output, "Fitted material file")->required();
+  merge->add_option("--image", merge_args->image, "The exemplar image (for --report: the shards keep only its statistics)");
+  merge->add_option("--report", merge_args->report, "Also draw the exemplar beside a fitted pattern (PNG; needs --image)");
   merge->add_flag("-q,--quiet", merge_args->quiet, "No progress on stderr");
   merge->callback([&action, merge_args] { action = [merge_args] { return run_merge_command(*merge_args); }; });
 

@@ -1,10 +1,9 @@
 #include "fissure/exemplar/overlay.hpp"
 
-#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/rng.hpp"
 
-#include "image_codecs.hpp"
+#include "bgr_png.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -83,18 +82,7 @@ void write_overlay(const std::filesystem::path& path, const ExemplarAnalysis& a,
     cv::circle(picture, to_px(node.position), radius, colour, cv::FILLED, cv::LINE_AA);
     cv::circle(picture, to_px(node.position), radius, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
   }
-  // Encoded with libpng (BGR → RGB): the exemplar module needs no OpenCV codec library.
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(picture.cols) * picture.rows * 3);
-  for (int y = 0; y < picture.rows; ++y) {
-    const cv::Vec3b* row = picture.ptr<cv::Vec3b>(y);
-    std::uint8_t* out = rgb.data() + static_cast<std::size_t>(y) * picture.cols * 3;
-    for (int x = 0; x < picture.cols; ++x) {
-      out[3 * x] = row[x][2];
-      out[3 * x + 1] = row[x][1];
-      out[3 * x + 2] = row[x][0];
-    }
-  }
-  write_file_atomically(path, detail::encode_png_rgb(rgb, picture.cols, picture.rows, path.string()));
+  detail::write_bgr_png(path, picture);
 }
 
 }  // namespace fissure

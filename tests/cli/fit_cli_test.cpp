@@ -53,9 +53,19 @@ void expect_failure(const test::CommandResult& r, int code, const std::string& w
 TEST(FitCli, FitsAMaterialThatFractureUsesAndCompareScores) {
   const fs::path dir = test::fresh_temp_dir("fit-cli");
   const fs::path image = draw_bricks(dir);
-  const auto r = test::run_command(small_fit(image, "--method paper -o " + (dir / "bricks.json").string()));
+  const auto r = test::run_command(
+      small_fit(image, "--method paper -o " + (dir / "bricks.json").string() + " --report " + (dir / "report.png").string()));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("paper: 96 trials"), std::string::npos) << r.output;
+  {
+    // The report: the exemplar's bricks in the left panel, a fitted pattern's cracks in the right.
+    const cv::Mat report = cv::imread((dir / "report.png").string(), cv::IMREAD_GRAYSCALE);
+    ASSERT_FALSE(report.empty()) << r.output;
+    EXPECT_EQ(report.cols, 1600);
+    const auto dark = [&](int x0) { return cv::countNonZero(report(cv::Rect(x0, 78, 770, 770)) < 128); };
+    EXPECT_GT(dark(20), 2000) << "the exemplar's lines";
+    EXPECT_GT(dark(810), 2000) << "the fitted pattern's cracks";
+  }
   const FractureMaterial m = load_material(dir / "bricks.json");
   EXPECT_EQ(m.name, "bricks");
   ASSERT_TRUE(m.fit.has_value());
@@ -106,9 +116,11 @@ TEST(FitCli, FitsAMaterialThatFractureUsesAndCompareScores) {
                                        (dir / "bricks.json").string() + " --load ball:0,0,0.02,0.05=0,0,-2000 --stats " + stats.string());
   ASSERT_EQ(given.exit_code, 0) << given.output;
   EXPECT_FALSE(nlohmann::json::parse(read_file(stats))["fracture"].contains("fitted_load"));
-  const auto c = test::run_command(fissure() + " compare " + image.string() + " " + pattern);
+  const auto c = test::run_command(fissure() + " compare " + image.string() + " " + pattern + " --report " +
+                                   (dir / "compare.png").string());
   ASSERT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("Eq. 5 error"), std::string::npos) << c.output;
+  EXPECT_EQ(cv::imread((dir / "compare.png").string()).cols, 1600);
 }
 
 TEST(FitCli, MergedShardsAreTheUnshardedFileByteForByte) {
@@ -147,6 +159,8 @@ TEST(FitCli, BadInputGetsOneLineAndLosesNothing) {
   expect_failure(test::run_command(small_fit(image, "--shard 1/2" + out)), 3, "--shard needs --method paper");
   expect_failure(test::run_command(small_fit(image, "-o " + (dir / "no" / "such" / "m.json").string())), 4, "m.json");
   expect_failure(test::run_command(small_fit(image, "--resume" + out)), 3, "no checkpoint");
+  expect_failure(test::run_command(small_fit(image, "--report " + (dir / "no" / "r.png").string() + out)), 4, "r.png");
+  expect_failure(test::run_command(small_fit(image, "--method paper --shard 1/2 --report r.png" + out)), 3, "give --report to fissure fit merge");
   // A checkpoint left by an earlier run is never overwritten by a fresh one.
   write_file_atomically(dir / "m.json.checkpoint", "{\"schema\": \"fissure-fit-checkpoint\", \"version\": 1, \"trials\": [[1, 0.5");
   expect_failure(test::run_command(small_fit(image, out.substr(1))), 3, "resume it with --resume");
