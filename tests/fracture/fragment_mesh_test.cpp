@@ -263,7 +263,10 @@ TEST(FragmentMesh, APinchedEdgeWhoseSheetsJoinRoundBothEndsIsSplit) {
   const FractureResult r = simulate_fracture(body.fracture_body(), p, body.initial_stress(params, true),
                                              draw_resistance(mesh->centroids(), params, 1), 1, simulation);
   const auto fragments = mesh_fragments(*mesh, r.cracks, static_cast<int>(r.cracks.size()), 2);
-  EXPECT_GT(fragments.size(), 800u);
+  // The dense state was reached: 849 fragments where the bug showed, 796 on an AMD EPYC machine
+  // (the run's round-off differs between machines: glibc picks libm code paths by CPU, and 2,005
+  // cracks amplify it). The invariants below are the test; the count only guards the setup.
+  EXPECT_GT(fragments.size(), 700u);
   double total = 0.0;
   for (std::size_t i = 0; i < fragments.size(); ++i) {
     int pinched = 0;
