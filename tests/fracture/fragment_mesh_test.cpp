@@ -81,6 +81,29 @@ std::map<int, Eigen::Vector3d> crack_area_vectors(const std::vector<FragmentMesh
   return sum;
 }
 
+// The most the vertex moves of unpinch() and collapse_short_edges() can have changed the
+// fragments' summed volume. Each moved vertex (FragmentMesh::moved_vertices, the surviving end of
+// a collapsed edge or a parted sheet's copy) went at most max_move, far below what float32 files
+// resolve; moving a vertex by d changes its fragment's volume by at most d times the area of the
+// triangles round it (to first order in d, ample at d ≤ 4e-7 of the fragment's size).
+double moved_volume_bound(const std::vector<FragmentMesh>& fragments) {
+  double bound = 0.0;
+  for (const auto& f : fragments) {
+    if (f.moved_vertices.empty()) continue;
+    std::vector<bool> moved(static_cast<std::size_t>(f.vertices.rows()), false);
+    for (int v : f.moved_vertices) moved[static_cast<std::size_t>(v)] = true;
+    for (Eigen::Index t = 0; t < f.triangles.rows(); ++t) {
+      int corners = 0;
+      for (int i = 0; i < 3; ++i) corners += moved[static_cast<std::size_t>(f.triangles(t, i))];
+      if (corners == 0) continue;
+      const Eigen::Vector3d p = f.vertices.row(f.triangles(t, 0)), q = f.vertices.row(f.triangles(t, 1)),
+                            r = f.vertices.row(f.triangles(t, 2));
+      bound += corners * f.max_move * 0.5 * (q - p).cross(r - p).norm();
+    }
+  }
+  return bound;
+}
+
 // A crack given as a function S(x), cutting the tets where it changes sign and `keep` holds.
 CrackSurface plane_crack(const TetMesh& mesh, int id, const std::function<double(const Eigen::Vector3d&)>& s,
                          const std::function<bool(int tet)>& keep) {
@@ -196,24 +219,16 @@ TEST(FragmentMesh, DebrisWhereCracksMeetWithinRoundOffJoinsANeighbour) {
   const auto coarse = fragments_at(0.05), debris = fragments_at(3e-8);
   EXPECT_EQ(debris.size() + 1, coarse.size());
   for (const auto* set : {&coarse, &debris}) {
-    double total = 0.0, moved = 0.0;
+    double total = 0.0;
     for (const auto& f : *set) {
       EXPECT_TRUE(closed(f));
       Eigen::Vector3d size = f.vertices.colwise().maxCoeff() - f.vertices.colwise().minCoeff();
       EXPECT_GT(size.norm(), 1e-3);  // the smallest real cell here is 0.05 across
       total += f.volume;
-      // A vertex moved by d (a collapsed 3e-8 edge) changes the volume by at most d times the
-      // area round it, so by at most max_move times the fragment's surface area.
-      double area = 0.0;
-      for (Eigen::Index t = 0; t < f.triangles.rows(); ++t) {
-        const Eigen::Vector3d p = f.vertices.row(f.triangles(t, 0)), q = f.vertices.row(f.triangles(t, 1)),
-                              r = f.vertices.row(f.triangles(t, 2));
-        area += 0.5 * (q - p).cross(r - p).norm();
-      }
-      moved += f.max_move * area;
     }
-    // Round-off of sums of a few thousand products of size 1, plus the collapses' bound.
-    EXPECT_NEAR(total, 1.0, 1e-11 + moved);
+    // Round-off of sums of a few thousand products of size 1, plus the collapses' bound (the
+    // collapsed 3e-8 edges).
+    EXPECT_NEAR(total, 1.0, 1e-11 + moved_volume_bound(*set));
   }
 }
 
@@ -240,7 +255,12 @@ TEST(FragmentMesh, FacesOnOnePlaneJoinDespiteRoundOff) {
       EXPECT_EQ(pinched, 0) << "seed " << seed << ", fragment " << i;
       total += fragments[i].volume;
     }
-    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume()) << "seed " << seed;
+    // 1e-9 of the volume for the cut itself, plus what the sub-float32 vertex moves can have
+    // changed. With 1e-9 alone, seed 53 failed on one CI machine (other CPU, other round-off):
+    // 1.8e-9 of the volume short, every fragment closed. Here its moves' bound is 2.4e-8 of the
+    // volume and its sum is 1e-13 short.
+    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume() + moved_volume_bound(fragments))
+        << "seed " << seed;
   }
 }
 
@@ -274,9 +294,8 @@ TEST(FragmentMesh, APinchedEdgeWhoseSheetsJoinRoundBothEndsIsSplit) {
     EXPECT_EQ(pinched, 0) << "fragment " << i;
     total += fragments[i].volume;
   }
-  // The moves (4e-7 of a fragment's size, times the area round each moved vertex) stay far
-  // below the 1e-9.
-  EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume());
+  // The 1e-9, plus what the sub-float32 moves (4e-7 of a fragment's size) can change.
+  EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume() + moved_volume_bound(fragments));
 }
 
 // The simulation's own cracks (turning, stars, T junctions, noise) on a 30 cm tile.
@@ -300,8 +319,10 @@ TEST(FragmentMesh, SimulatedCracksGiveClosedFragmentsThatFillTheTile) {
       EXPECT_GT(fragments[i].volume, 0.0) << "seed " << seed << ", fragment " << i;
       total += fragments[i].volume;
     }
-    // The bound: fragment volumes sum to the tet mesh's volume within 1e-9.
-    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume()) << "seed " << seed;
+    // The bound: fragment volumes sum to the tet mesh's volume within 1e-9, plus what
+    // the sub-float32 vertex moves can change (zero where nothing moved).
+    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume() + moved_volume_bound(fragments))
+        << "seed " << seed;
     // Every crack face has its opposite: Σ area vectors per crack vanish (to round-off of the
     // crack's area, ≤ 0.3 × 0.02 m² per crack here).
     std::map<int, double> moved;
@@ -397,8 +418,9 @@ TEST(FragmentMesh, CurvedThinWalledBodiesGiveClosedFragmentsOnTheInputSurface) {
         for (const auto& x : tri) outer_points.push_back(x);
       }
     }
-    // The bounds: the tet mesh's volume to 1e-9, the input's to 1 %.
-    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume());
+    // The bounds: the tet mesh's volume to 1e-9 (plus the sub-float32 moves' bound), the
+    // input's to 1 %.
+    EXPECT_NEAR(total, mesh->total_volume(), 1e-9 * mesh->total_volume() + moved_volume_bound(fragments));
     // The 1 %: the torus's fragments hold 99.06 % of what its surface encloses at 23K
     // tets (98.9 % before the mesher's facet distance was bounded by 0.02 of the thickness 2V/A).
     const double input_bound = 0.01;
