@@ -16,6 +16,7 @@
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
 #include "fissure/exemplar/stats_json.hpp"
+#include "fissure/fracture/fitted_transfer.hpp"
 #include "fissure/fracture/fragment_mesh.hpp"
 #include "fissure/fracture/fragment_target.hpp"
 #include "fissure/fracture/material_file.hpp"
@@ -183,18 +184,30 @@ int run_fracture(const FractureArgs& given) {
   Eigen::VectorXd resistance;
   FragmentTargetResult target;
   double preparation_s = 0.0, simulation_s = 0.0;
+  double length_scale = 1.0, fitted_force = 0.0;
   {
     AbandonableWork work;
     mesh = mesh_from(args, progress, appearance);
     require_memory(static_solve_bytes(mesh->tet_count()), memory_limit(args.allow_large), "fracturing " + args.input);
-    if (fitted_load_rule) {
-      const double force = params.load_factor * params.density * mesh->total_volume() * kStandardGravity;
-      scenario.loads = {fitted_load(*mesh, scenario.up, fit->load_grid, fit->load_inset, force, args.seed)};
+    if (fit) {
+      // A fitted material's lengths follow the body's visible face (fitted_transfer.hpp); the
+      // values given on the command line are the user's own and stay as given.
+      const VisiblePattern face = extract_visible_pattern(*mesh, {}, 0, view);
+      if (face.has_visible_face) length_scale = fitted_length_scale(*fit, face.graph.total_area);
+      params = scale_lengths(params, length_scale);
+      for (const auto& [row, value] : args.overrides) parameter_value(params, row) = value;
     }
+    // The fitted load rule's patch pushes with 1 N until the body is prepared: its force keeps the
+    // fit's stress, which takes the prepared body to measure.
+    if (fitted_load_rule) scenario.loads = {fitted_load(*mesh, scenario.up, fit->load_grid, fit->load_inset, 1.0, args.seed)};
     progress.stage("preparing the body");
     prepared = std::make_unique<PreparedBody>(mesh, params.elastic(), scenario, thread_count());
     throw_if_interrupted();
     initial = prepared->initial_stress(params, !args.raw_stress);
+    if (fitted_load_rule) {
+      fitted_force = fitted_load_force(*fit, params, *prepared);
+      initial *= fitted_force;
+    }
     resistance = draw_resistance(mesh->centroids(), params, args.seed, thread_count());
     preparation_s = clock.milliseconds() / 1e3;
     progress.stage("simulating");
@@ -254,7 +267,10 @@ int run_fracture(const FractureArgs& given) {
       {"crack_limit_reached", result.crack_limit_reached},
       {"seconds", {{"preparation", preparation_s}, {"simulation", simulation_s}, {"fragment_meshing", meshing_s}, {"export", export_s}}}};
   if (args.fragments > 0) fracture["fragments_requested"] = std::lround(args.fragments);
-  if (fitted_load_rule) fracture["fitted_load"] = scenario.loads.front().spec;
+  if (fitted_load_rule) {
+    fracture["fitted_load"] = fitted_load(*mesh, scenario.up, fit->load_grid, fit->load_inset, fitted_force, args.seed).spec;
+  }
+  if (fit) fracture["fitted_length_scale"] = length_scale;
   if (args.posterior) {
     nlohmann::ordered_json drawn = nlohmann::ordered_json::object();
     for (const FitPrior& prior : table3_priors()) {

@@ -5,6 +5,7 @@
 #include "fissure/base/json_error_text.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/exemplar/stats_json.hpp"
+#include "fissure/fracture/fitted_transfer.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -183,6 +184,12 @@ FractureMaterial fitted_material(const FitSettings& settings, const FitProblem& 
   fit.fragment_scale = problem.box.fragment_scale;
   fit.load_grid = settings.body.load_grid;
   fit.load_inset = settings.body.load_inset;
+  {
+    // The stress the fitted l = 1 puts in the fit body, so another body's load keeps it.
+    const PreparedBody& prepared = problem.body->prepared();
+    fit.load_reference_stress = reference_stress_per_newton(prepared) *
+                                prepared.fracture_body().mass(problem.base.density) * kStandardGravity;
+  }
   fit.supports = "rim-rollers";
   for (std::size_t k = 0; k < kFitDimensions; ++k) {
     const double span = problem.box.hi[k] - problem.box.lo[k];

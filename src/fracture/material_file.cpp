@@ -194,10 +194,14 @@ MaterialFit read_fit(const json& j) {
   f.note = string_field(required(res, p + "resolution.", "note"), p + "resolution.note");
   const json& load = required(j, p, "load");
   if (!load.is_object()) throw FieldError{p + "load is not an object"};
-  refuse_unknown_keys(load, p + "load.", {"rule", "grid", "inset"});
+  refuse_unknown_keys(load, p + "load.", {"rule", "grid", "inset", "reference_stress"});
   if (string_field(required(load, p + "load.", "rule"), p + "load.rule") != "uniform-grid") throw FieldError{p + "load.rule is not \"uniform-grid\""};
   f.load_grid = static_cast<int>(integer_field(load, p + "load.", "grid", 1, 32));
   f.load_inset = number_field(load, p + "load.", "inset");
+  if (load.contains("reference_stress")) {
+    f.load_reference_stress = number_field(load, p + "load.", "reference_stress");
+    if (!(f.load_reference_stress > 0.0)) throw FieldError{p + "load.reference_stress is not a positive number"};
+  }
   f.supports = string_field(required(j, p, "supports"), p + "supports");
   if (f.supports != "rim-rollers") throw FieldError{p + "supports " + json(f.supports).dump() + " is not \"rim-rollers\""};
   f.fragment_scale = number_field(j, p, "fragment_scale");
@@ -238,6 +242,7 @@ nlohmann::ordered_json fit_to_json(const MaterialFit& f) {
   j["resolution"] = {{"tets_per_fragment", f.tets_per_fragment}, {"min_tets", f.min_tets}, {"max_tets", f.max_tets},
                      {"capped", f.capped}, {"note", f.note}};
   j["load"] = {{"rule", "uniform-grid"}, {"grid", f.load_grid}, {"inset", f.load_inset}};
+  if (f.load_reference_stress > 0.0) j["load"]["reference_stress"] = f.load_reference_stress;
   j["supports"] = f.supports;
   j["fragment_scale"] = f.fragment_scale;
   nlohmann::ordered_json names = nlohmann::ordered_json::array();

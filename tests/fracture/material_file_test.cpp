@@ -101,6 +101,7 @@ FractureMaterial fitted_sample() {
   f.fragment_scale = 0.1 / 3.0;
   f.load_grid = 8;
   f.load_inset = 0.15;
+  f.load_reference_stress = 1e5 / 3.0;
   f.supports = "rim-rollers";
   f.posterior_mean = {1e6 / 3.0, 0.1, 2e6, 3e6, 10.0 / 3.0};
   f.posterior_stddev = {1.0, 2.0, 3.0, 4.0, 5.0};
@@ -121,6 +122,14 @@ TEST(MaterialFile, FitRecordRoundTripsExactly) {
   EXPECT_EQ(back.fit->seed, m.fit->seed);
   EXPECT_EQ(back.fit->samples, m.fit->samples);
   EXPECT_EQ(back.fit->exemplar.fragment_area_hist.p, m.fit->exemplar.fragment_area_hist.p);
+  EXPECT_EQ(back.fit->load_reference_stress, m.fit->load_reference_stress);
+  // A fit written before the reference stress reads with 0 (its load stays l·m·g); a reference
+  // stress that is not positive is refused.
+  nlohmann::json older = nlohmann::json::parse(text);
+  older["fit"]["load"].erase("reference_stress");
+  EXPECT_EQ(material_from_json(older.dump(), "older.json").fit->load_reference_stress, 0.0);
+  older["fit"]["load"]["reference_stress"] = -1.0;
+  EXPECT_THROW(material_from_json(older.dump(), "older.json"), IoError);
   // A version-1 file (every bundled material, and files written before the fit existed) still reads.
   nlohmann::json old = nlohmann::json::parse(material_to_json(sample_material()));
   old["version"] = 1;

@@ -33,6 +33,9 @@ struct MaterialFit {
   double fragment_scale = 0.0;    ///< √(fragment area) on the fit body, m: r_relax's Table 3 reference
   int load_grid = 0;              ///< the load rule: a G × G grid of patch positions…
   double load_inset = 0.0;        ///< …over [inset, 1 − inset] of the top face, drawn uniformly
+  /// Pa: the fit body's reference stress for l = 1 (fitted_transfer.hpp), by which another body's
+  /// load keeps the fit's stress; 0 in material files written before it (the load is then l·m·g).
+  double load_reference_stress = 0.0;
   std::string supports;           ///< "rim-rollers": the default supports
 
   /// The posterior over the five fitted parameters (Table 3 order, absolute units).

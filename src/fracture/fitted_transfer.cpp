@@ -1,0 +1,63 @@
+#include "fissure/fracture/fitted_transfer.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
+#include "fissure/fem/load.hpp"
+#include "fissure/fem/stress.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace fissure {
+
+double reference_stress_per_newton(const PreparedBody& body) {
+  const TetMesh& mesh = body.mesh();
+  const LoadSpec patch = default_load(mesh, body.scenario().up, 1.0, body.scenario().patch_radius);
+  const StressField stress = body.stress_of_forces(assemble_load(mesh, patch));
+  Eigen::VectorXd lambda;
+  max_principal_of(stress, lambda);
+  const Eigen::VectorXd& volumes = mesh.volumes();
+  double sum = 0.0;
+  for (Eigen::Index t = 0; t < lambda.size(); ++t) sum += volumes[t] * std::max(lambda[t], 0.0);
+  const double mean = sum / mesh.total_volume();
+  if (!(mean > 0.0) || !std::isfinite(mean)) {
+    throw InvalidInput("the body's reference load puts no tension in it (reference stress " + format_number(mean) +
+                       " Pa/N), so a fitted load cannot be matched to it");
+  }
+  return mean;
+}
+
+double fitted_length_scale(const MaterialFit& fit, double visible_area) {
+  const double fit_area = fit.body_width * fit.body_height;
+  if (!(fit_area > 0.0) || !(visible_area > 0.0) || !std::isfinite(visible_area)) {
+    throw InvalidInput("a fitted material moves to a body by its visible area: the fit body's is " + format_number(fit_area) +
+                       " m², the body's " + format_number(visible_area) + " m²");
+  }
+  const double s = std::sqrt(visible_area / fit_area);
+  // The fit body itself, meshed again: its area differs by round-off only, and a material on
+  // its own fit body must be the fitted one exactly.
+  return std::abs(s - 1.0) <= 1e-9 ? 1.0 : s;
+}
+
+FractureParams scale_lengths(const FractureParams& params, double s) {
+  if (!(s > 0.0) || !std::isfinite(s)) throw InvalidInput("the length scale " + format_number(s) + " is not positive");
+  if (s == 1.0) return params;
+  FractureParams p = params;
+  p.relax_radius *= s;
+  p.resistance_correlation *= s;
+  for (NoiseOctave& octave : p.noise) {
+    octave.amplitude *= s;
+    octave.frequency /= s;
+  }
+  p.fracture_toughness *= std::sqrt(s);
+  return p;
+}
+
+double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const PreparedBody& body) {
+  if (fit.load_reference_stress > 0.0) {
+    return params.load_factor * fit.load_reference_stress / reference_stress_per_newton(body);
+  }
+  return params.load_factor * params.density * body.mesh().total_volume() * kStandardGravity;
+}
+
+}  // namespace fissure
