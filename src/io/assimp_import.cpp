@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 namespace fissure::io_detail {
 namespace {
@@ -93,7 +94,8 @@ SurfaceAppearance appearance_of(const aiScene& scene, const SurfaceMesh& surface
 
 }  // namespace
 
-SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name) {
+std::unique_ptr<Assimp::Importer> read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name,
+                                                            bool flatten) {
   {
     const std::string bytes = read_file(path);
     const std::string ext = lower_ascii(path.extension().string());
@@ -102,18 +104,20 @@ SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::str
     else if (ext == ".fbx") precheck_fbx(bytes, name);
     else throw IoError(name + ": '" + ext + "' is not read through assimp");
   }
-  Assimp::Importer importer;
+  auto importer = std::make_unique<Assimp::Importer>();
   // Keep triangles only (points and lines bound no volume), and let FBX convert to metres.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  importer.SetPropertyBool(AI_CONFIG_FBX_CONVERT_TO_M, true);
-  const aiScene* scene = importer.ReadFile(name, aiProcess_ValidateDataStructure | aiProcess_Triangulate |
-                                                     aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices |
-                                                     aiProcess_SortByPType);
-  if (!scene) throw IoError(name + ": cannot import: " + std::string(importer.GetErrorString()));
+  importer->SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer->SetPropertyBool(AI_CONFIG_FBX_CONVERT_TO_M, true);
+  unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                   aiProcess_SortByPType;
+  if (flatten) steps |= aiProcess_PreTransformVertices;
+  const aiScene* scene = importer->ReadFile(name, steps);
+  if (!scene) throw IoError(name + ": cannot import: " + std::string(importer->GetErrorString()));
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) throw IoError(name + ": the file is incomplete or corrupt");
   if (scene->mNumMeshes > 0 && !scene->mMeshes) throw IoError(name + ": corrupt: the scene lists meshes it does not hold");
+  if (!scene->mRootNode) throw IoError(name + ": corrupt: the scene has no root node");
 
-  // Check every triangle mesh before copying anything.
+  // Check every triangle mesh before anything is copied.
   constexpr auto kMaxIndex = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
   std::uint64_t vertex_count = 0, face_count = 0;
   for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
@@ -146,6 +150,19 @@ SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::str
     if (vertex_count > kMaxIndex) throw IoError(name + ": more than " + std::to_string(kMaxIndex) + " vertices");
   }
   if (face_count == 0) throw InvalidInput(name + ": holds no triangles");
+  return importer;
+}
+
+SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name) {
+  const std::unique_ptr<Assimp::Importer> importer = read_checked_assimp_scene(path, name, true);
+  const aiScene* scene = importer->GetScene();
+  std::uint64_t vertex_count = 0, face_count = 0;
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* mesh = scene->mMeshes[m];
+    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+    vertex_count += mesh->mNumVertices;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) face_count += mesh->mFaces[f].mNumIndices == 3 ? 1 : 0;
+  }
 
   SurfaceMesh surface;
   surface.source_name = name;

@@ -9,7 +9,10 @@
 
 #include "fissure/mesh/surface_mesh.hpp"
 
+#include <assimp/Importer.hpp>
+
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace fissure::io_detail {
@@ -18,6 +21,13 @@ namespace fissure::io_detail {
 /// transforms applied, triangulated (points and lines dropped); FBX converted to metres. Not yet
 /// repaired. Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds
 /// no triangles.
+/// The file's scene read by assimp (the importer owns it: importer->GetScene()), after the
+/// prechecks, with every triangle mesh's arrays checked: vertices finite, indices in range, a
+/// root node. `flatten`: node transforms applied to the vertices (one mesh list, no hierarchy).
+/// Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds no triangles.
+std::unique_ptr<Assimp::Importer> read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name,
+                                                            bool flatten);
+
 SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name);
 
 }  // namespace fissure::io_detail

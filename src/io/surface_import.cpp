@@ -30,28 +30,36 @@ Reader reader_for(const fs::path& path, const std::string& name) {
 
 }  // namespace
 
-SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
-  const std::string name = path.string();
+namespace io_detail {
+
+void check_input_file(const fs::path& path) {
   require_nonempty_file(path);
   // A device or FIFO (a link to /dev/zero named part.obj) would be read without end.
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw IoError(name + ": not a regular file");
+  if (!fs::is_regular_file(path, ec)) throw IoError(path.string() + ": not a regular file");
+}
+
+SurfaceMesh read_surface_file(const fs::path& path) {
+  const std::string name = path.string();
+  check_input_file(path);
   const Reader reader = reader_for(path, name);
-  SurfaceMesh surface;
-  if (reader == Reader::Assimp) {
-    surface = io_detail::import_with_assimp(path, name);
-  } else {
-    const auto size = fs::file_size(path, ec);
-    if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
-    const std::string bytes = read_file(path);
-    switch (reader) {
-      case Reader::Obj: surface = io_detail::read_obj(bytes, name); break;
-      case Reader::Ply: surface = io_detail::read_ply(bytes, name); break;
-      case Reader::Stl: surface = io_detail::read_stl(bytes, name); break;
-      default: surface = io_detail::read_off(bytes, name); break;
-    }
+  if (reader == Reader::Assimp) return import_with_assimp(path, name);
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
+  const std::string bytes = read_file(path);
+  switch (reader) {
+    case Reader::Obj: return read_obj(bytes, name);
+    case Reader::Ply: return read_ply(bytes, name);
+    case Reader::Stl: return read_stl(bytes, name);
+    default: return read_off(bytes, name);
   }
-  return repair_surface(surface, report, options);
+}
+
+}  // namespace io_detail
+
+SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
+  return repair_surface(io_detail::read_surface_file(path), report, options);
 }
 
 SurfaceMesh load_surface_input(const std::string& input, SurfaceRepairReport& report) {

@@ -12,6 +12,7 @@
 
 #include "fissure/mesh/surface_mesh.hpp"
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -34,5 +35,15 @@ SurfaceMesh read_stl(std::string_view bytes, const std::string& name);
 /// Object File Format (OFF, COFF, NOFF, CNOFF, STOFF and the like; the keyword may be omitted):
 /// the first three numbers of each vertex line, then faces "n i₁ … iₙ [colour]".
 SurfaceMesh read_off(std::string_view bytes, const std::string& name);
+
+/// Throws IoError naming the file when it is missing, empty or not a regular file (a device or
+/// FIFO would be read without end).
+void check_input_file(const std::filesystem::path& path);
+
+/// The file by its extension (case-insensitive; assimp's guess from the content would hand a file
+/// that is not what its name says to a reader that was never fuzzed with it): OBJ, PLY, STL, OFF
+/// by the readers above, glTF, GLB and FBX through assimp with node transforms applied. Not yet
+/// repaired. The messages of import_surface().
+SurfaceMesh read_surface_file(const std::filesystem::path& path);
 
 }  // namespace fissure::io_detail

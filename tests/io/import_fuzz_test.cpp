@@ -11,6 +11,7 @@
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/rng.hpp"
+#include "fissure/io/scene_import.hpp"
 #include "fissure/io/surface_import.hpp"
 
 #include "fbx_binary_writer.hpp"
@@ -41,26 +42,59 @@ namespace fs = std::filesystem;
 
 enum class Outcome { Read, Refused };
 
-// import_surface on `path`: Read or Refused with the file named; anything else fails the test.
-Outcome import_outcome(const fs::path& path) {
-  SurfaceRepairReport report;
-  // Self-intersection checks belong to the repair tests, not to the readers' fuzzing: skipped
-  // to keep thousands of cases fast.
-  SurfaceRepairOptions options;
-  options.check_self_intersections = false;
+// Runs `read`: true when it returns; an IoError or InvalidInput must start with the file's name
+// (false); anything else fails the test.
+template <class Read>
+bool read_or_refused(const fs::path& path, const char* what, Read&& read) {
   try {
-    const SurfaceMesh s = import_surface(path, report, options);
-    EXPECT_GT(s.face_count(), 0);
-    EXPECT_TRUE(s.vertices.allFinite());
-    return Outcome::Read;
+    read();
+    return true;
   } catch (const IoError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(path.string(), 0), 0u) << e.what();
   } catch (const InvalidInput& e) {
     EXPECT_EQ(std::string(e.what()).rfind(path.string(), 0), 0u) << e.what();
   } catch (const std::exception& e) {
-    ADD_FAILURE() << path << ": untyped error: " << e.what();
+    ADD_FAILURE() << path << ": untyped error from " << what << ": " << e.what();
   }
-  return Outcome::Refused;
+  return false;
+}
+
+// import_scene on the same file (scene_import.hpp): read with every index in range, parents
+// before children, or refused naming the file.
+void check_scene_import(const fs::path& path) {
+  read_or_refused(path, "import_scene", [&] {
+    const ImportedScene scene = import_scene(path);
+    for (const SceneMesh& m : scene.meshes) {
+      EXPECT_TRUE(m.vertices.allFinite()) << path;
+      if (m.triangles.size() > 0) {
+        EXPECT_GE(m.triangles.minCoeff(), 0) << path;
+        EXPECT_LT(m.triangles.maxCoeff(), m.vertices.rows()) << path;
+      }
+      EXPECT_LT(m.material, static_cast<int>(scene.materials.size())) << path;
+    }
+    for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+      EXPECT_LT(scene.nodes[i].parent, static_cast<int>(i)) << path;
+      for (int mesh : scene.nodes[i].meshes) EXPECT_LT(mesh, static_cast<int>(scene.meshes.size())) << path;
+    }
+    for (const SceneBody& b : scene_bodies(scene)) EXPECT_TRUE(b.world.allFinite()) << path;
+  });
+}
+
+// import_surface on `path`: Read or Refused with the file named; anything else fails the test.
+// The scene import of the same bytes is checked too.
+Outcome import_outcome(const fs::path& path) {
+  check_scene_import(path);
+  SurfaceRepairReport report;
+  // Self-intersection checks belong to the repair tests, not to the readers' fuzzing: skipped
+  // to keep thousands of cases fast.
+  SurfaceRepairOptions options;
+  options.check_self_intersections = false;
+  const bool read = read_or_refused(path, "import_surface", [&] {
+    const SurfaceMesh s = import_surface(path, report, options);
+    EXPECT_GT(s.face_count(), 0);
+    EXPECT_TRUE(s.vertices.allFinite());
+  });
+  return read ? Outcome::Read : Outcome::Refused;
 }
 
 // Huge counts as text (digit runs replaced) and as binary (a 32-bit word overwritten).

@@ -1,0 +1,70 @@
+#pragma once
+/// Scene import (issue 13): a file's node hierarchy, transforms, mesh instances, scene material
+/// names and texture references, for the scene module to find its bodies in. glTF, GLB and FBX
+/// through assimp (checked as import_surface() checks them: surface_import.hpp); OBJ, PLY, STL and
+/// OFF, which have no hierarchy, through Fissure's own readers as one node holding one mesh.
+///
+/// A **body** is a node instance of a mesh: two nodes sharing one mesh are two bodies (they break
+/// differently), and a node holding two meshes holds two bodies. Geometry stays in each mesh's own
+/// coordinates; a body's world transform is the product of its node's ancestors' local
+/// transforms. The up axis and unit follow the format's convention (glTF: +Y, metres; FBX:
+/// converted to metres, its UpAxis setting; OBJ, PLY, STL, OFF: +Y as Blender writes OBJ, +Z as
+/// STL and PLY usually are, metres) and can be overridden by the caller.
+#include <Eigen/Core>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+struct SceneNode {
+  std::string name;             ///< as in the file (made unique among siblings, see path)
+  int parent = -1;              ///< index into ImportedScene::nodes; -1 for the root
+  Eigen::Matrix4d local = Eigen::Matrix4d::Identity();  ///< to the parent's frame, m
+  std::vector<int> meshes;      ///< indices into ImportedScene::meshes
+  /// "/root/street/slab_03": the names from the root, a sibling's repeated name suffixed "#2",
+  /// "#3"… so every node has its own path (seeds and assignments use it).
+  std::string path;
+};
+
+struct SceneMesh {
+  std::string name;
+  Eigen::MatrixX3d vertices;    ///< the mesh's own frame, m
+  Eigen::MatrixX3i triangles;
+  Eigen::MatrixX2d uvs;         ///< one per vertex, or empty
+  int material = -1;            ///< index into ImportedScene::materials, or -1
+};
+
+struct SceneMaterial {
+  std::string name;
+  Eigen::Vector3d colour = Eigen::Vector3d::Constant(0.8);  ///< linear RGB base colour
+  std::vector<std::string> textures;  ///< texture references as the file gives them (paths or "*0")
+};
+
+struct ImportedScene {
+  std::string source;           ///< the file, for messages
+  std::string format;           ///< "gltf", "glb", "fbx", "obj", "ply", "stl", "off"
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();  ///< the format's up axis (see above)
+  std::vector<SceneNode> nodes; ///< parents before children; nodes[0] is the root
+  std::vector<SceneMesh> meshes;
+  std::vector<SceneMaterial> materials;
+};
+
+/// One node instance of one mesh.
+struct SceneBody {
+  int node = -1;
+  int mesh = -1;
+  Eigen::Matrix4d world = Eigen::Matrix4d::Identity();  ///< mesh frame → world, m
+  /// The node's path, with "/MESH_NAME" appended when the node holds more than one mesh.
+  std::string path;
+};
+
+/// Reads `path`. Throws IoError naming the file when it is missing, corrupt or of a format not
+/// listed above, and InvalidInput when it holds no triangles (the messages of import_surface()).
+ImportedScene import_scene(const std::filesystem::path& path);
+
+/// Every body of the scene, in node order, then mesh order within a node.
+std::vector<SceneBody> scene_bodies(const ImportedScene& scene);
+
+}  // namespace fissure

@@ -1,0 +1,141 @@
+// Scene import (scene_import.hpp): the node hierarchy, its transforms, mesh instances as bodies,
+// scene material names and texture references, as written in a hand-made glTF and read back
+// through assimp; the simple formats as one node; wrong files named.
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/io/scene_import.hpp"
+
+#include "surface_files.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+
+namespace fissure {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A street: "street" (moved 1 m along x) holds two nodes both named "slab" that share the mesh
+// "Slab" (one moved 2 m up, one turned 90° about y), and "lamp" whose child "bulb" (scaled 2×)
+// holds the mesh "Bulb". Each mesh is a tetrahedron as 4 unindexed triangles (144 bytes).
+fs::path write_street(const fs::path& dir) {
+  const std::array<std::array<float, 3>, 4> p = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+  std::string bin;
+  for (int corner : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
+    for (float c : p[static_cast<std::size_t>(corner)]) test::put(bin, c, false);
+  }
+  write_file_atomically(dir / "t.bin", bin);
+  const double h = std::sqrt(0.5);
+  write_file_atomically(dir / "street.gltf", R"({"asset": {"version": "2.0"},
+    "buffers": [{"byteLength": 144, "uri": "t.bin"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 144}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 12,
+                   "min": [0, 0, 0], "max": [1, 1, 1]}],
+    "images": [{"uri": "concrete.png"}],
+    "textures": [{"source": 0}],
+    "materials": [{"name": "concrete", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.4, 0.3, 1],
+                                                                 "baseColorTexture": {"index": 0}}},
+                  {"name": "glass"}],
+    "meshes": [{"name": "Slab", "primitives": [{"attributes": {"POSITION": 0}, "material": 0}]},
+               {"name": "Bulb", "primitives": [{"attributes": {"POSITION": 0}, "material": 1}]}],
+    "nodes": [{"name": "street", "translation": [1, 0, 0], "children": [1, 2, 3]},
+              {"name": "slab", "mesh": 0, "translation": [0, 2, 0]},
+              {"name": "slab", "mesh": 0, "rotation": [0, )" + std::to_string(h) + ", 0, " + std::to_string(h) + R"(]},
+              {"name": "lamp", "children": [4]},
+              {"name": "bulb", "mesh": 1, "scale": [2, 2, 2]}],
+    "scenes": [{"nodes": [0]}], "scene": 0})");
+  return dir / "street.gltf";
+}
+
+Eigen::Vector3d apply(const Eigen::Matrix4d& m, const Eigen::Vector3d& p) { return m.topLeftCorner<3, 3>() * p + m.topRightCorner<3, 1>(); }
+
+TEST(SceneImport, GltfKeepsHierarchyInstancesMaterialsAndTextures) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-gltf");
+  const ImportedScene scene = import_scene(write_street(dir));
+  EXPECT_EQ(scene.format, "gltf");
+  EXPECT_EQ(scene.up, Eigen::Vector3d::UnitY());
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].name, "Slab");
+  EXPECT_EQ(scene.meshes[0].triangles.rows(), 4);
+  std::string names;
+  for (const SceneMaterial& m : scene.materials) names += " '" + m.name + "'";
+  ASSERT_EQ(scene.materials.size(), 2u) << names;
+  EXPECT_EQ(scene.materials[static_cast<std::size_t>(scene.meshes[0].material)].name, "concrete");
+  EXPECT_EQ(scene.materials[static_cast<std::size_t>(scene.meshes[1].material)].name, "glass");
+  const SceneMaterial& concrete = scene.materials[static_cast<std::size_t>(scene.meshes[0].material)];
+  EXPECT_NEAR(concrete.colour.x(), 0.5, 1e-6);
+  ASSERT_EQ(concrete.textures.size(), 1u) << "the reference is kept though concrete.png does not exist";
+  EXPECT_EQ(concrete.textures[0], "concrete.png");
+
+  // Parents before children; two siblings named "slab" get their own paths.
+  std::vector<std::string> paths;
+  for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
+    paths.push_back(scene.nodes[i].path);
+    if (scene.nodes[i].parent >= 0) EXPECT_LT(static_cast<std::size_t>(scene.nodes[i].parent), i);
+  }
+  EXPECT_EQ(paths, (std::vector<std::string>{"/street", "/street/slab", "/street/slab#2", "/street/lamp", "/street/lamp/bulb"}));
+
+  // Three bodies: the shared mesh twice, the bulb once, each with its world transform.
+  const std::vector<SceneBody> bodies = scene_bodies(scene);
+  ASSERT_EQ(bodies.size(), 3u);
+  EXPECT_EQ(bodies[0].mesh, bodies[1].mesh) << "two nodes sharing one mesh are two bodies";
+  EXPECT_EQ(bodies[0].path, "/street/slab");
+  EXPECT_EQ(bodies[1].path, "/street/slab#2");
+  EXPECT_EQ(bodies[2].path, "/street/lamp/bulb");
+  // float32 in the file: 1e-6 is its resolution at 1 m.
+  const Eigen::Vector3d x = Eigen::Vector3d::UnitX();
+  EXPECT_TRUE(apply(bodies[0].world, x).isApprox(Eigen::Vector3d(2, 2, 0), 1e-6)) << apply(bodies[0].world, x).transpose();
+  // 90° about +y takes +x to −z, then the street's 1 m along x.
+  EXPECT_TRUE(apply(bodies[1].world, x).isApprox(Eigen::Vector3d(1, 0, -1), 1e-6)) << apply(bodies[1].world, x).transpose();
+  EXPECT_TRUE(apply(bodies[2].world, x).isApprox(Eigen::Vector3d(3, 0, 0), 1e-6)) << apply(bodies[2].world, x).transpose();
+  // The mesh keeps its own frame: the instances' geometry is the file's, unmoved.
+  EXPECT_DOUBLE_EQ(scene.meshes[0].vertices.col(0).maxCoeff(), 1.0);
+}
+
+TEST(SceneImport, SimpleFormatsAreOneNodeWithTheirConventionalUp) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-simple");
+  const test::Polygons box = test::box_polygons();
+  test::write_test_file(dir / "box.obj", test::to_obj(box));
+  test::write_test_file(dir / "box.stl", test::to_stl(box));
+  const ImportedScene obj = import_scene(dir / "box.obj");
+  EXPECT_EQ(obj.up, Eigen::Vector3d::UnitY());
+  ASSERT_EQ(obj.nodes.size(), 1u);
+  EXPECT_EQ(obj.nodes[0].path, "/box");
+  ASSERT_EQ(scene_bodies(obj).size(), 1u);
+  EXPECT_EQ(obj.meshes[0].triangles.rows(), 12);
+  EXPECT_EQ(import_scene(dir / "box.stl").up, Eigen::Vector3d::UnitZ());
+}
+
+TEST(SceneImport, WrongFilesAreNamed) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-bad");
+  const auto message = [](const fs::path& p) {
+    try {
+      import_scene(p);
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(dir / "none.glb").find("none.glb"), std::string::npos);
+  write_file_atomically(dir / "scene.dae", "<COLLADA/>");
+  EXPECT_NE(message(dir / "scene.dae").find("unsupported scene format '.dae'"), std::string::npos) << message(dir / "scene.dae");
+  write_file_atomically(dir / "noise.glb", std::string(2000, '\x5a'));
+  EXPECT_NE(message(dir / "noise.glb").find("noise.glb"), std::string::npos);
+  // A node referencing a mesh the file does not have: assimp's validation or ours names it.
+  std::string text = read_file(write_street(dir));
+  text.replace(text.find(R"("mesh": 1)"), 9, R"("mesh": 7)");
+  write_file_atomically(dir / "dangling.gltf", text);
+  const std::string m = message(dir / "dangling.gltf");
+  EXPECT_NE(m, "accepted");
+  EXPECT_NE(m.find("dangling.gltf"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace fissure
