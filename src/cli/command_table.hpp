@@ -15,7 +15,7 @@ struct CommandInfo {
   std::string_view summary;
 };
 
-inline constexpr std::array<CommandInfo, 8> kCommands{{
+inline constexpr std::array<CommandInfo, 9> kCommands{{
     {"mesh", "Tetrahedralise a closed surface (or a procedural tile) into a gmsh .msh file"},
     {"solve", "Static stress of a tet mesh under loads: writes displacement, stress and max principal stress as "
               "gmsh views"},
@@ -26,6 +26,7 @@ inline constexpr std::array<CommandInfo, 8> kCommands{{
     {"fracture", "Fracture a body (paper S5): cracks over time, fragment labels, and the visible pattern measured "
                  "like an exemplar"},
     {"fit", "Fit a fracture material to a traced crack image by ABC (paper S6): the paper's best-of-N or ABC-SMC"},
+    {"scene", "Scenes of many bodies (issue 13): list a scene's bodies, materials and which can be fractured"},
     {"version", "Print the Fissure version"},
 }};
 

@@ -30,5 +30,6 @@ void register_analyze(CLI::App& app, Action& action);
 void register_compare(CLI::App& app, Action& action);
 void register_fracture(CLI::App& app, Action& action);
 void register_fit(CLI::App& app, Action& action);
+void register_scene(CLI::App& app, Action& action);
 
 }  // namespace fissure::cli

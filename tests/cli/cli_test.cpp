@@ -128,7 +128,7 @@ TEST_F(Cli, HelpOnEverySubcommand) {
 TEST_F(Cli, MessagesNameTheCulprit) {
   // Used to be "A subcommand is required".
   expect_failure(test::run_command(fissure() + " foo"), 2,
-                 "fissure: unknown command 'foo' (commands: mesh, solve, modes, analyze, compare, fracture, fit, version)");
+                 "fissure: unknown command 'foo' (commands: mesh, solve, modes, analyze, compare, fracture, fit, scene, version)");
   // Used to be "expected three numbers x,y,z".
   draw_tracings(dir);
   const std::string bricks = (dir / "bricks.png").string();

@@ -105,7 +105,7 @@ TEST(Dispatcher, UsageErrorsAreOneLine) {
       << r.output;
   r = test::run_command(fissure());
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.output, "fissure: a command is required (commands: mesh, solve, modes, analyze, compare, fracture, fit, version)\n");
+  EXPECT_EQ(r.output, "fissure: a command is required (commands: mesh, solve, modes, analyze, compare, fracture, fit, scene, version)\n");
   // Every command the help lists is one the dispatcher can run.
   r = test::run_command(fissure() + " --help");
   EXPECT_EQ(r.exit_code, 0);

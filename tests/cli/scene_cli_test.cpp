@@ -1,0 +1,95 @@
+// fissure scene info as a user runs it (issue 13): a GLB written by Fissure's own exporter with a
+// closed and an open box lists both bodies, their sizes and materials, fractures only the closed
+// one and says why not the other; wrong files get one line.
+
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/io/scene_export.hpp"
+
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <string>
+
+namespace fissure {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string fissure() { return test::fissure_executable().string(); }
+
+// A W × H × D box, outward triangles; `open` drops its top (+z) face.
+ExportPart box(const std::string& name, const Eigen::Vector3d& size, const Eigen::Vector3d& at, bool open) {
+  ExportPart p;
+  p.name = name;
+  p.translation = at;
+  p.vertices.resize(8, 3);
+  for (int i = 0; i < 8; ++i) p.vertices.row(i) << (i & 1) * size.x(), ((i >> 1) & 1) * size.y(), ((i >> 2) & 1) * size.z();
+  const int faces[12][3] = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                            {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  const int count = open ? 10 : 12;
+  p.triangles.resize(count, 3);
+  int row = 0;
+  for (int f = 0; f < 12; ++f) {
+    if (open && (f == 2 || f == 3)) continue;  // the top, z = D
+    p.triangles.row(row++) << faces[f][0], faces[f][1], faces[f][2];
+  }
+  p.uvs = Eigen::MatrixX2d::Zero(8, 2);
+  p.triangle_material.assign(static_cast<std::size_t>(count), 0);
+  return p;
+}
+
+TEST(SceneCli, InfoListsBodiesAndWhichCanBeFractured) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-info");
+  ExportScene scene;
+  scene.materials = {{"concrete", Eigen::Vector3d(0.5, 0.5, 0.5)}};
+  scene.parts = {box("slab", {2.0, 1.0, 0.1}, {0, 0, 0}, false), box("crate", {1, 1, 1}, {5, 0, 0}, true)};
+  write_scene(dir / "yard.glb", scene);
+  const auto r = test::run_command(fissure() + " scene info -q " + (dir / "yard.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("2 bodies (1 fracturable)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("not fracturable: open"), std::string::npos) << r.output;
+
+  const auto j = test::run_command(fissure() + " scene info -q --json " + (dir / "yard.glb").string());
+  ASSERT_EQ(j.exit_code, 0) << j.output;
+  const nlohmann::json info = nlohmann::json::parse(j.output);
+  EXPECT_EQ(info["format"], "glb");
+  EXPECT_EQ(info["up"], "+y");
+  ASSERT_EQ(info["bodies"].size(), 2u);
+  const nlohmann::json* slab = nullptr;
+  const nlohmann::json* crate = nullptr;
+  for (const auto& b : info["bodies"]) {
+    const std::string path = b["path"];
+    if (path.size() >= 5 && path.compare(path.size() - 5, 5, "/slab") == 0) slab = &b;
+    if (path.size() >= 6 && path.compare(path.size() - 6, 6, "/crate") == 0) crate = &b;
+  }
+  ASSERT_TRUE(slab && crate) << info.dump(2);
+  EXPECT_TRUE((*slab)["fracturable"].get<bool>());
+  EXPECT_EQ((*slab)["material"], "concrete");
+  // float32 in the file: 1e-6 relative.
+  EXPECT_NEAR((*slab)["volume"].get<double>(), 0.2, 1e-6);
+  EXPECT_NEAR((*slab)["size"][0].get<double>(), 2.0, 1e-6);
+  EXPECT_NEAR((*slab)["size"][2].get<double>(), 0.1, 1e-6);
+  EXPECT_FALSE((*crate)["fracturable"].get<bool>());
+  EXPECT_NE((*crate)["reason"].get<std::string>().find("open"), std::string::npos) << crate->dump();
+}
+
+TEST(SceneCli, WrongFilesGetOneLine) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-bad");
+  const auto missing = test::run_command(fissure() + " scene info -q " + (dir / "none.glb").string());
+  EXPECT_EQ(missing.exit_code, 4) << missing.output;
+  EXPECT_NE(missing.output.find("none.glb"), std::string::npos) << missing.output;
+  EXPECT_EQ(std::count(missing.output.begin(), missing.output.end(), '\n'), 1) << missing.output;
+  write_file_atomically(dir / "scene.blend", "BLENDER");
+  const auto other = test::run_command(fissure() + " scene info -q " + (dir / "scene.blend").string());
+  EXPECT_EQ(other.exit_code, 4) << other.output;
+  EXPECT_NE(other.output.find("unsupported scene format '.blend'"), std::string::npos) << other.output;
+  EXPECT_EQ(std::count(other.output.begin(), other.output.end(), '\n'), 1) << other.output;
+  const auto bare = test::run_command(fissure() + " scene");
+  EXPECT_EQ(bare.exit_code, 2) << bare.output;
+}
+
+}  // namespace
+}  // namespace fissure
