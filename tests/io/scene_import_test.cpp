@@ -76,7 +76,9 @@ TEST(SceneImport, GltfKeepsHierarchyInstancesMaterialsAndTextures) {
   std::vector<std::string> paths;
   for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
     paths.push_back(scene.nodes[i].path);
-    if (scene.nodes[i].parent >= 0) EXPECT_LT(static_cast<std::size_t>(scene.nodes[i].parent), i);
+    if (scene.nodes[i].parent >= 0) {
+      EXPECT_LT(static_cast<std::size_t>(scene.nodes[i].parent), i);
+    }
   }
   EXPECT_EQ(paths, (std::vector<std::string>{"/street", "/street/slab", "/street/slab#2", "/street/lamp", "/street/lamp/bulb"}));
 
