@@ -94,8 +94,7 @@ SurfaceAppearance appearance_of(const aiScene& scene, const SurfaceMesh& surface
 
 }  // namespace
 
-std::unique_ptr<Assimp::Importer> read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name,
-                                                            bool flatten) {
+CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name, bool flatten) {
   {
     const std::string bytes = read_file(path);
     const std::string ext = lower_ascii(path.extension().string());
@@ -150,19 +149,13 @@ std::unique_ptr<Assimp::Importer> read_checked_assimp_scene(const std::filesyste
     if (vertex_count > kMaxIndex) throw IoError(name + ": more than " + std::to_string(kMaxIndex) + " vertices");
   }
   if (face_count == 0) throw InvalidInput(name + ": holds no triangles");
-  return importer;
+  return {std::move(importer), vertex_count, face_count};
 }
 
 SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name) {
-  const std::unique_ptr<Assimp::Importer> importer = read_checked_assimp_scene(path, name, true);
-  const aiScene* scene = importer->GetScene();
-  std::uint64_t vertex_count = 0, face_count = 0;
-  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
-    const aiMesh* mesh = scene->mMeshes[m];
-    if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
-    vertex_count += mesh->mNumVertices;
-    for (unsigned f = 0; f < mesh->mNumFaces; ++f) face_count += mesh->mFaces[f].mNumIndices == 3 ? 1 : 0;
-  }
+  const CheckedAssimpScene checked = read_checked_assimp_scene(path, name, true);
+  const aiScene* scene = &checked.scene();
+  const std::uint64_t vertex_count = checked.vertices, face_count = checked.triangles;
 
   SurfaceMesh surface;
   surface.source_name = name;

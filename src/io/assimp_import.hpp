@@ -10,7 +10,9 @@
 #include "fissure/mesh/surface_mesh.hpp"
 
 #include <assimp/Importer.hpp>
+#include <assimp/scene.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -21,12 +23,16 @@ namespace fissure::io_detail {
 /// transforms applied, triangulated (points and lines dropped); FBX converted to metres. Not yet
 /// repaired. Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds
 /// no triangles.
-/// The file's scene read by assimp (the importer owns it: importer->GetScene()), after the
-/// prechecks, with every triangle mesh's arrays checked: vertices finite, indices in range, a
-/// root node. `flatten`: node transforms applied to the vertices (one mesh list, no hierarchy).
+/// The file's scene read by assimp, after the prechecks, with every triangle mesh's arrays
+/// checked: vertices finite, indices in range, a root node. `flatten`: node transforms applied to
+/// the vertices (one mesh list, no hierarchy).
+struct CheckedAssimpScene {
+  std::unique_ptr<Assimp::Importer> importer;  ///< owns the scene
+  std::uint64_t vertices = 0, triangles = 0;   ///< over the triangle meshes
+  const aiScene& scene() const { return *importer->GetScene(); }
+};
 /// Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds no triangles.
-std::unique_ptr<Assimp::Importer> read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name,
-                                                            bool flatten);
+CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name, bool flatten);
 
 SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name);
 

@@ -151,8 +151,8 @@ void drop_assimp_default_material(ImportedScene& scene) {
 
 ImportedScene import_with_assimp(const fs::path& path, const std::string& format) {
   const std::string name = path.string();
-  const auto importer = io_detail::read_checked_assimp_scene(path, name, false);
-  const aiScene& scene = *importer->GetScene();
+  const io_detail::CheckedAssimpScene checked = io_detail::read_checked_assimp_scene(path, name, false);
+  const aiScene& scene = checked.scene();
   ImportedScene out;
   out.source = name;
   out.format = format;

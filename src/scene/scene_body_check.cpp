@@ -26,12 +26,12 @@ SceneBodyCheck check_scene_body(const ImportedScene& scene, const SceneBody& bod
   if (world.vertices.rows() > 0) {
     check.extent = world.vertices.colwise().maxCoeff() - world.vertices.colwise().minCoeff();
   }
-  // A mirroring transform (det < 0) turns an outward surface inside out; repair re-orients it.
   if (!world.vertices.allFinite()) {
     check.reason = "its world transform makes a coordinate non-finite";
     return check;
   }
   try {
+    // A mirroring transform (det < 0) turns an outward surface inside out; repair re-orients it.
     SurfaceRepairReport report;
     world = repair_surface(world, report);
     check.repairs = report.actions;
