@@ -192,9 +192,7 @@ int run_fracture(const FractureArgs& given) {
     if (fit) {
       // A fitted material's lengths follow the body's visible face (fitted_transfer.hpp); the
       // values given on the command line are the user's own and stay as given.
-      const VisiblePattern face = extract_visible_pattern(*mesh, {}, 0, view);
-      if (face.has_visible_face) length_scale = fitted_length_scale(*fit, face.graph.total_area);
-      params = scale_lengths(params, length_scale);
+      params = fitted_params_on(*fit, params, *mesh, view, &length_scale);
       for (const auto& [row, value] : args.overrides) parameter_value(params, row) = value;
     }
     // The fitted load rule's patch pushes with 1 N until the body is prepared: its force keeps the

@@ -73,7 +73,7 @@ FitBody::FitBody(const FitBodyPlan& plan, const FitBodyOptions& options, const E
   m_box = m_prepared->mesh().bounding_box();
   const int g = options.load_grid;
   const Eigen::Vector3d up = m_prepared->scenario().up;
-  for (int k = 0; k < g * g; ++k) m_positions.push_back(grid_load_position(*mesh, g, options.load_inset, k));
+  for (int k = 0; k < g * g; ++k) m_positions.push_back(grid_load_position(*mesh, Eigen::Vector3d::UnitZ(), g, options.load_inset, k));
   const std::size_t tets = static_cast<std::size_t>(mesh->tet_count());
   m_unit_fields.assign(m_positions.size() * tets * 6, 0.0f);
   // Each position's field is independent; the factor and the recovery operator are shared

@@ -4,6 +4,7 @@
 #include "fissure/base/number_text.hpp"
 #include "fissure/fem/load.hpp"
 #include "fissure/fem/stress.hpp"
+#include "fissure/fracture/visible_pattern.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,14 @@ double fitted_load_force(const MaterialFit& fit, const FractureParams& params, c
     return params.load_factor * fit.load_reference_stress / reference_stress_per_newton(body);
   }
   return params.load_factor * params.density * body.mesh().total_volume() * kStandardGravity;
+}
+
+FractureParams fitted_params_on(const MaterialFit& fit, const FractureParams& params, const TetMesh& mesh,
+                                const Eigen::Vector3d& view, double* scale) {
+  const VisiblePattern face = extract_visible_pattern(mesh, {}, 0, view);
+  const double s = face.has_visible_face ? fitted_length_scale(fit, face.graph.total_area) : 1.0;
+  if (scale) *scale = s;
+  return scale_lengths(params, s);
 }
 
 }  // namespace fissure

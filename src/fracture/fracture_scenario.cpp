@@ -167,23 +167,31 @@ LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen:
   return load;
 }
 
-Eigen::Vector3d grid_load_position(const TetMesh& mesh, int grid, double inset, int k) {
+Eigen::Vector3d grid_load_position(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, int k) {
+  int axis = 0;
+  up.cwiseAbs().maxCoeff(&axis);
+  if (!(up.cwiseAbs() - Eigen::Vector3d::Unit(axis)).isZero(1e-12)) {
+    throw InvalidInput("a fitted material's load rule lays its grid along the axes: the up direction must be one (+x, -y, …); give a load");
+  }
+  if (grid < 1) throw InvalidInput("the fitted load grid is empty");
+  const int a = axis == 0 ? 1 : 0, b = axis == 2 ? 1 : 2;  // the two axes across up, in x, y, z order
   const Eigen::Matrix<double, 2, 3> box = mesh.bounding_box();
   const int i = k % grid, j = k / grid;
-  const double fx = inset + (1.0 - 2.0 * inset) * (i + 0.5) / grid;
-  const double fy = inset + (1.0 - 2.0 * inset) * (j + 0.5) / grid;
-  return {box(0, 0) + fx * (box(1, 0) - box(0, 0)), box(0, 1) + fy * (box(1, 1) - box(0, 1)), box(1, 2)};
+  const double fa = inset + (1.0 - 2.0 * inset) * (i + 0.5) / grid;
+  const double fb = inset + (1.0 - 2.0 * inset) * (j + 0.5) / grid;
+  Eigen::Vector3d centre;
+  centre(a) = box(0, a) + fa * (box(1, a) - box(0, a));
+  centre(b) = box(0, b) + fb * (box(1, b) - box(0, b));
+  centre(axis) = up(axis) > 0 ? box(1, axis) : box(0, axis);
+  return centre;
 }
 
 LoadSpec fitted_load(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, double force,
                      std::uint64_t seed) {
-  if (!(up - Eigen::Vector3d::UnitZ()).isZero(1e-12)) {
-    throw InvalidInput("a fitted material's load rule is defined on a tile's top face (+z up); give --load");
-  }
-  if (grid < 1) throw InvalidInput("the fitted load grid is empty");
+  grid_load_position(mesh, up, grid, inset, 0);  // checks up and the grid before the draw
   Rng rng = Rng::derive(seed, "fit-load");
   const int k = static_cast<int>(rng.uniform_index(static_cast<std::uint64_t>(grid) * static_cast<std::uint64_t>(grid)));
-  return patch_load(mesh, up, grid_load_position(mesh, grid, inset, k), force);
+  return patch_load(mesh, up, grid_load_position(mesh, up, grid, inset, k), force);
 }
 
 }  // namespace fissure

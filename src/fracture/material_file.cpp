@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <cstdint>
 #include <set>
@@ -372,6 +373,12 @@ std::vector<std::filesystem::path> material_directories() {
     candidates.push_back(dir.parent_path().parent_path() / "share" / "fissure" / "materials");
   }
   candidates.emplace_back(FISSURE_ASSETS_DIR "/materials");
+  // The user library last: a bundled name always means the bundled file.
+  if (const char* xdg = std::getenv("XDG_DATA_HOME"); xdg && *xdg) {
+    candidates.push_back(fs::path(xdg) / "fissure" / "materials");
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    candidates.push_back(fs::path(home) / ".local" / "share" / "fissure" / "materials");
+  }
   std::vector<fs::path> out;
   for (const fs::path& c : candidates) {
     if (fs::is_directory(c, error) && std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);

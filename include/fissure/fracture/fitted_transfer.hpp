@@ -34,6 +34,11 @@ double fitted_length_scale(const MaterialFit& fit, double visible_area);
 /// `params` with its lengths scaled by `s` as above (s > 0).
 FractureParams scale_lengths(const FractureParams& params, double s);
 
+/// `params` moved to `mesh` seen along `view`: its lengths scaled by fitted_length_scale of the
+/// mesh's visible face (unchanged when it has none). `scale`, when given, receives s.
+FractureParams fitted_params_on(const MaterialFit& fit, const FractureParams& params, const TetMesh& mesh,
+                                const Eigen::Vector3d& view, double* scale = nullptr);
+
 /// The force (N) of the fitted load rule on `body`: l · σ_ref,fit / σ_ref,body, or l·m·g (m from
 /// params.density) when the fit predates the reference stress (fit.load_reference_stress = 0).
 double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const PreparedBody& body);

@@ -49,13 +49,16 @@ LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double for
 LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen::Vector3d& centre, double force,
                     double patch_radius = 0.0);
 
-/// Centre of cell k (row-major, x fastest) of a `grid` × `grid` grid over [inset, 1 − inset] of
-/// the body's extent across up (+z only: the fit's tiles), at its top: the fit's load positions.
-Eigen::Vector3d grid_load_position(const TetMesh& mesh, int grid, double inset, int k);
+/// Centre of cell k of a `grid` × `grid` grid over [inset, 1 − inset] of the body's bounding box
+/// across `up`, at the box's top along up: the fit's load positions. `up` is a coordinate axis
+/// (±x, ±y, ±z); the grid's axes are the other two in x, y, z order, the first running fastest
+/// (for +z: row-major, x fastest, as the fit's tiles have always used). Throws InvalidInput when
+/// up is not a coordinate axis.
+Eigen::Vector3d grid_load_position(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, int k);
 
 /// The load a fitted material's rule draws for a body (MaterialFit's load rule, the fit's trials'
-/// law): the patch at a cell of the grid drawn from (seed, "fit-load"), pushing with l·m·g.
-/// Throws InvalidInput when up is not +z (the rule is defined on a tile's top face).
+/// law): the patch at a cell of the grid drawn from (seed, "fit-load"), pushing with `force`.
+/// Throws InvalidInput when up is not a coordinate axis (the grid is laid along the axes).
 LoadSpec fitted_load(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, double inset, double force,
                      std::uint64_t seed);
 

@@ -56,7 +56,9 @@ FractureMaterial load_material(const std::filesystem::path& path);
 /// Where bundled materials are looked up, in order, keeping only directories that exist:
 /// 1. <prefix>/share/fissure/materials, <prefix> being the directory above the running
 ///    executable's bin/ (or libexec/fissure/) directory: an installed Fissure;
-/// 2. the source tree's assets/materials (its path is compiled in): a build tree.
+/// 2. the source tree's assets/materials (its path is compiled in): a build tree;
+/// 3. the user library, $XDG_DATA_HOME/fissure/materials (default ~/.local/share/fissure/materials),
+///    last, so a bundled name always means the bundled file.
 std::vector<std::filesystem::path> material_directories();
 
 /// The names of the bundled materials (file stems of *.json in material_directories(), first
