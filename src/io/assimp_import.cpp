@@ -107,8 +107,11 @@ CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, 
   // Keep triangles only (points and lines bound no volume), and let FBX convert to metres.
   importer->SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   importer->SetPropertyBool(AI_CONFIG_FBX_CONVERT_TO_M, true);
-  unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                   aiProcess_SortByPType;
+  // No aiProcess_JoinIdenticalVertices: it joins vertices closer than an absolute 1e-5 (in the
+  // file's units), which collapses the short, real edges of a fracture surface (a fragment with a
+  // 0.5 µm edge came back open) and anything modelled in millimetres. Surface repair welds exact
+  // duplicates instead (mesh/surface_repair.hpp).
+  unsigned steps = aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_SortByPType;
   if (flatten) steps |= aiProcess_PreTransformVertices;
   const aiScene* scene = importer->ReadFile(name, steps);
   if (!scene) throw IoError(name + ": cannot import: " + std::string(importer->GetErrorString()));

@@ -85,12 +85,13 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
           low[static_cast<std::size_t>(i)] = std::min(low[static_cast<std::size_t>(i)], x);
           high[static_cast<std::size_t>(i)] = std::max(high[static_cast<std::size_t>(i)], x);
         }
+        if (part.uvs.rows() == 0) continue;
         // glTF's v runs down the image; the UVs given run up it.
         uvs[static_cast<std::size_t>(2 * v)] = static_cast<float>(part.uvs(v, 0));
         uvs[static_cast<std::size_t>(2 * v + 1)] = static_cast<float>(1.0 - part.uvs(v, 1));
       }
-      const int position = buffer.add(positions, kFloat, "VEC3", n, kArrayBuffer, {{"min", low}, {"max", high}});
-      const int uv = buffer.add(uvs, kFloat, "VEC2", n, kArrayBuffer);
+      nlohmann::ordered_json attributes = {{"POSITION", buffer.add(positions, kFloat, "VEC3", n, kArrayBuffer, {{"min", low}, {"max", high}})}};
+      if (part.uvs.rows() > 0) attributes["TEXCOORD_0"] = buffer.add(uvs, kFloat, "VEC2", n, kArrayBuffer);
       nlohmann::ordered_json primitives = nlohmann::ordered_json::array();
       for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         std::vector<std::uint32_t> indices;
@@ -99,7 +100,7 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
             for (int i = 0; i < 3; ++i) indices.push_back(static_cast<std::uint32_t>(part.triangles(t, i)));
         if (indices.empty()) continue;
         const int index = buffer.add(indices, kUnsignedInt, "SCALAR", static_cast<int>(indices.size()), kElementArrayBuffer);
-        primitives.push_back({{"attributes", {{"POSITION", position}, {"TEXCOORD_0", uv}}},
+        primitives.push_back({{"attributes", attributes},
                               {"indices", index},
                               {"material", m},
                               {"mode", kTriangles}});
@@ -107,19 +108,41 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
       node["mesh"] = meshes.size();
       meshes.push_back({{"name", part.name}, {"primitives", primitives}});
     }
-    node["translation"] = {part.translation.x(), part.translation.y(), part.translation.z()};
+    if (part.linear.isIdentity(0.0)) {
+      node["translation"] = {part.translation.x(), part.translation.y(), part.translation.z()};
+    } else {
+      // A rotation or scale: the node's matrix, column-major, as glTF stores it.
+      nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          matrix.push_back(r == 3 ? (c == 3 ? 1.0 : 0.0) : c == 3 ? part.translation(r) : part.linear(r, c));
+      node["matrix"] = matrix;
+    }
     node["extras"] = nlohmann::ordered_json::parse(part.extras_json);
     nodes.push_back(std::move(node));
   }
-  nlohmann::ordered_json materials = nlohmann::ordered_json::array();
-  for (const ExportMaterial& m : scene.materials)
-    materials.push_back({{"name", m.name},
-                         {"pbrMetallicRoughness",
-                          {{"baseColorFactor", {m.colour.x(), m.colour.y(), m.colour.z(), 1.0}},
-                           {"metallicFactor", 0.0},
-                           {"roughnessFactor", 0.9}}}});
   nlohmann::ordered_json root_nodes = nlohmann::ordered_json::array();
-  for (std::size_t i = 0; i < nodes.size(); ++i) root_nodes.push_back(i);
+  for (std::size_t i = 0; i < scene.parts.size(); ++i) {
+    const int parent = scene.parts[i].parent;
+    if (parent < 0) {
+      root_nodes.push_back(i);
+    } else {
+      nodes[static_cast<std::size_t>(parent)]["children"].push_back(i);
+    }
+  }
+  nlohmann::ordered_json materials = nlohmann::ordered_json::array(), images = nlohmann::ordered_json::array(),
+                        textures = nlohmann::ordered_json::array();
+  for (const ExportMaterial& m : scene.materials) {
+    nlohmann::ordered_json pbr = {{"baseColorFactor", {m.colour.x(), m.colour.y(), m.colour.z(), 1.0}},
+                                  {"metallicFactor", 0.0},
+                                  {"roughnessFactor", 0.9}};
+    if (!m.texture.empty()) {
+      pbr["baseColorTexture"] = {{"index", textures.size()}};
+      textures.push_back({{"source", images.size()}});
+      images.push_back({{"uri", m.texture}});
+    }
+    materials.push_back({{"name", m.name}, {"pbrMetallicRoughness", pbr}});
+  }
 
   std::string& bytes = buffer.bytes();
   while (bytes.size() % 4 != 0) bytes.push_back('\0');
@@ -131,6 +154,10 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
                                  {"nodes", nodes}};
   if (!meshes.empty()) gltf["meshes"] = meshes;
   if (!materials.empty()) gltf["materials"] = materials;
+  if (!textures.empty()) {
+    gltf["textures"] = textures;
+    gltf["images"] = images;
+  }
   if (!bytes.empty()) {
     gltf["buffers"] = {buffer_json};
     gltf["bufferViews"] = views;

@@ -28,15 +28,18 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
   // OBJ indexes positions and UVs apart: each position is written once, so a part whose
   // vertices were split at UV seams reads back as one welded, closed surface with no merging.
   long long position_base = 0, uv_base = 0;  // OBJ indices are 1-based and global
-  for (const ExportPart& part : scene.parts) {
+  for (std::size_t k = 0; k < scene.parts.size(); ++k) {
+    const ExportPart& part = scene.parts[k];
+    if (part.triangles.rows() == 0) continue;  // a group: OBJ has no hierarchy
+    const Eigen::Matrix4d to_scene = part_to_scene(scene, k);
     out += "o " + obj_name(part.name) + "\n";
     // Extras as comments, one line: OBJ has no place for them.
     out += "# extras " + nlohmann::json::parse(part.extras_json).dump() + "\n";
     std::map<std::array<double, 3>, long long> position_index;
     std::vector<long long> position_of(static_cast<std::size_t>(part.vertices.rows()));
     for (Eigen::Index v = 0; v < part.vertices.rows(); ++v) {
-      const std::array<double, 3> x = {part.vertices(v, 0) + part.translation(0), part.vertices(v, 1) + part.translation(1),
-                                       part.vertices(v, 2) + part.translation(2)};
+      const Eigen::Vector3d p = to_scene.topLeftCorner<3, 3>() * part.vertices.row(v).transpose() + to_scene.topRightCorner<3, 1>();
+      const std::array<double, 3> x = {p(0), p(1), p(2)};
       const auto [it, inserted] = position_index.try_emplace(x, static_cast<long long>(position_index.size()));
       position_of[static_cast<std::size_t>(v)] = it->second;
       if (inserted) out += "v " + exact_number(x[0]) + " " + exact_number(x[1]) + " " + exact_number(x[2]) + "\n";
@@ -52,8 +55,8 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
         out += "f";
         for (int i = 0; i < 3; ++i) {
           const int v = part.triangles(t, i);
-          out += " " + std::to_string(position_base + position_of[static_cast<std::size_t>(v)] + 1) + "/" +
-                 std::to_string(uv_base + v + 1);
+          out += " " + std::to_string(position_base + position_of[static_cast<std::size_t>(v)] + 1);
+          if (part.uvs.rows() > 0) out += "/" + std::to_string(uv_base + v + 1);
         }
         out += "\n";
       }
@@ -70,6 +73,7 @@ std::string encode_mtl(const ExportScene& scene) {
     out += "newmtl " + obj_name(m.name) + "\n";
     out += "Kd " + exact_number(m.colour.x()) + " " + exact_number(m.colour.y()) + " " + exact_number(m.colour.z()) + "\n";
     out += "Ka 0 0 0\nKs 0 0 0\nd 1\nillum 1\n";
+    if (!m.texture.empty()) out += "map_Kd " + m.texture + "\n";
   }
   return out;
 }

@@ -20,10 +20,12 @@ std::string encode_ply(const ExportScene& scene) {
   out += "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nproperty uchar material\nend_header\n";
   for (std::size_t k = 0; k < scene.parts.size(); ++k) {
     const ExportPart& p = scene.parts[k];
+    const Eigen::Matrix4d to_scene = part_to_scene(scene, k);
     for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) {
-      for (int i = 0; i < 3; ++i) append_bytes(out, static_cast<float>(p.vertices(v, i) + p.translation(i)));
-      append_bytes(out, static_cast<float>(p.uvs(v, 0)));
-      append_bytes(out, static_cast<float>(p.uvs(v, 1)));
+      const Eigen::Vector3d x = to_scene.topLeftCorner<3, 3>() * p.vertices.row(v).transpose() + to_scene.topRightCorner<3, 1>();
+      for (int i = 0; i < 3; ++i) append_bytes(out, static_cast<float>(x(i)));
+      append_bytes(out, static_cast<float>(p.uvs.rows() > 0 ? p.uvs(v, 0) : 0.0));
+      append_bytes(out, static_cast<float>(p.uvs.rows() > 0 ? p.uvs(v, 1) : 0.0));
       append_bytes(out, static_cast<std::int32_t>(k));
     }
   }

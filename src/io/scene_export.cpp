@@ -21,14 +21,16 @@ void check_scene(const ExportScene& scene) {
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ExportPart& part = scene.parts[p];
     const std::string who = "part " + std::to_string(p + 1) + " (" + part.name + ")";
-    if (part.uvs.rows() != part.vertices.rows())
+    if (part.parent < -1 || part.parent >= static_cast<int>(p))
+      throw InvalidInput(who + ": its parent " + std::to_string(part.parent + 1) + " is not an earlier part");
+    if (part.uvs.rows() != 0 && part.uvs.rows() != part.vertices.rows())
       throw InvalidInput(who + ": " + std::to_string(part.uvs.rows()) + " UVs for " +
                          std::to_string(part.vertices.rows()) + " vertices");
     if (static_cast<Eigen::Index>(part.triangle_material.size()) != part.triangles.rows())
       throw InvalidInput(who + ": " + std::to_string(part.triangle_material.size()) + " triangle materials for " +
                          std::to_string(part.triangles.rows()) + " triangles");
-    if (!part.vertices.allFinite() || !part.uvs.allFinite() || !part.translation.allFinite())
-      throw InvalidInput(who + ": a position or UV is not finite");
+    if (!part.vertices.allFinite() || !part.uvs.allFinite() || !part.translation.allFinite() || !part.linear.allFinite())
+      throw InvalidInput(who + ": a position, UV or transform value is not finite");
     for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) {
       for (int i = 0; i < 3; ++i)
         if (part.triangles(t, i) < 0 || part.triangles(t, i) >= part.vertices.rows())
@@ -55,6 +57,18 @@ std::string exact_number(double value) {
 }
 
 }  // namespace io_detail
+
+Eigen::Matrix4d part_to_scene(const ExportScene& scene, std::size_t k) {
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  for (int p = static_cast<int>(k); p >= 0; p = scene.parts[static_cast<std::size_t>(p)].parent) {
+    const ExportPart& part = scene.parts[static_cast<std::size_t>(p)];
+    Eigen::Matrix4d local = Eigen::Matrix4d::Identity();
+    local.topLeftCorner<3, 3>() = part.linear;
+    local.topRightCorner<3, 1>() = part.translation;
+    m = local * m;
+  }
+  return m;
+}
 
 std::optional<SceneFormat> scene_format_of(const fs::path& path) {
   const std::string ext = io_detail::lower_ascii(path.extension().string());

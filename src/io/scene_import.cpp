@@ -223,15 +223,13 @@ std::vector<SceneBody> scene_bodies(const ImportedScene& scene) {
   for (std::size_t i = 0; i < scene.nodes.size(); ++i) {
     const SceneNode& n = scene.nodes[i];
     world[i] = n.parent < 0 ? n.local : Eigen::Matrix4d(world[static_cast<std::size_t>(n.parent)] * n.local);
-    for (int mesh : n.meshes) {
-      SceneBody b;
-      b.node = static_cast<int>(i);
-      b.mesh = mesh;
-      b.world = world[i];
-      b.path = n.path;
-      if (n.meshes.size() > 1) b.path += "/" + scene.meshes[static_cast<std::size_t>(mesh)].name;
-      bodies.push_back(std::move(b));
-    }
+    if (n.meshes.empty()) continue;
+    SceneBody b;
+    b.node = static_cast<int>(i);
+    b.meshes = n.meshes;
+    b.world = world[i];
+    b.path = n.path;
+    bodies.push_back(std::move(b));
   }
   return bodies;
 }

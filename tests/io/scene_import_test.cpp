@@ -85,7 +85,7 @@ TEST(SceneImport, GltfKeepsHierarchyInstancesMaterialsAndTextures) {
   // Three bodies: the shared mesh twice, the bulb once, each with its world transform.
   const std::vector<SceneBody> bodies = scene_bodies(scene);
   ASSERT_EQ(bodies.size(), 3u);
-  EXPECT_EQ(bodies[0].mesh, bodies[1].mesh) << "two nodes sharing one mesh are two bodies";
+  EXPECT_EQ(bodies[0].meshes, bodies[1].meshes) << "two nodes sharing one mesh are two bodies";
   EXPECT_EQ(bodies[0].path, "/street/slab");
   EXPECT_EQ(bodies[1].path, "/street/slab#2");
   EXPECT_EQ(bodies[2].path, "/street/lamp/bulb");

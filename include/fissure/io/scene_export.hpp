@@ -6,13 +6,14 @@
 /// binary FBX is unreadable by assimp and Blender alike (assimp issue 4686), so FBX is left out.
 ///
 /// What each format keeps:
-/// - GLB, glTF: one node per part (its name, its translation, its extras object); one mesh per
+/// - GLB, glTF: one node per part (its name, its parent, its translation or, when it rotates or
+///   scales, its matrix, its extras object); one mesh per
 ///   part with one primitive per material it uses, the primitives sharing one vertex array, so
 ///   a closed part stays one closed surface; positions and UVs as float32, indices uint32; no
 ///   normals (clients shade flat, which a fracture surface is).
-/// - OBJ: one `o NAME` per part, world positions, `vt` UVs, `usemtl` switching per material
+/// - OBJ: one `o NAME` per part with triangles, positions in the scene's frame, `vt` UVs, `usemtl` switching per material
 ///   inside the object, and `mtllib` naming NAME.mtl, written beside it. Extras become comments.
-/// - PLY: one binary little-endian mesh of world positions, with per-vertex `part` (the part's
+/// - PLY: one binary little-endian mesh of positions in the scene's frame, with per-vertex `part` (the part's
 ///   index) and u, v, and per-face `material` (index into the scene's materials).
 /// Every file is written atomically (base/atomic_file.hpp); the same scene gives the same bytes.
 
@@ -25,11 +26,15 @@
 
 namespace fissure {
 
+/// One node: its transform in its parent's frame (linear · x + translation) and, optionally, its
+/// geometry in its own frame. A part with no triangles is an empty node (a group).
 struct ExportPart {
   std::string name;
-  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< the node's origin, m
-  Eigen::MatrixX3d vertices;   ///< relative to `translation`, m
-  Eigen::MatrixX2d uvs;        ///< one per vertex
+  int parent = -1;             ///< the parent part's index (an earlier part), or -1 at the root
+  Eigen::Vector3d translation = Eigen::Vector3d::Zero();  ///< the node's origin in its parent's frame, m
+  Eigen::Matrix3d linear = Eigen::Matrix3d::Identity();   ///< its rotation and scale there
+  Eigen::MatrixX3d vertices;   ///< in the node's frame, m
+  Eigen::MatrixX2d uvs;        ///< one per vertex, or none (glTF then has no TEXCOORD_0)
   Eigen::MatrixX3i triangles;  ///< counter-clockwise seen from outside
   std::vector<int> triangle_material;  ///< per triangle, an index into ExportScene::materials
   std::string extras_json = "{}";      ///< a JSON object: glTF node extras, OBJ comments
@@ -38,12 +43,18 @@ struct ExportPart {
 struct ExportMaterial {
   std::string name;
   Eigen::Vector3d colour = Eigen::Vector3d::Constant(0.8);  ///< linear RGB base colour
+  /// The base-colour texture, a file reference as the scene gave it (relative to the file written);
+  /// empty for none. glTF: an image by URI; MTL: map_Kd.
+  std::string texture;
 };
 
 struct ExportScene {
   std::vector<ExportMaterial> materials;
   std::vector<ExportPart> parts;
 };
+
+/// Part `k`'s frame → the scene's frame: the product of its ancestors' transforms and its own.
+Eigen::Matrix4d part_to_scene(const ExportScene& scene, std::size_t k);
 
 enum class SceneFormat { Glb, Gltf, Obj, Ply };
 

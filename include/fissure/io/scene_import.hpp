@@ -4,8 +4,9 @@
 /// through assimp (checked as import_surface() checks them: surface_import.hpp); OBJ, PLY, STL and
 /// OFF, which have no hierarchy, through Fissure's own readers as one node holding one mesh.
 ///
-/// A **body** is a node instance of a mesh: two nodes sharing one mesh are two bodies (they break
-/// differently), and a node holding two meshes holds two bodies. Geometry stays in each mesh's own
+/// A **body** is a node instance of its mesh: two nodes sharing one mesh are two bodies (they break
+/// differently). Importers split a mesh by material (a glTF mesh's primitives, an FBX model's
+/// materials become several assimp meshes on one node), so a node's meshes together are one body. Geometry stays in each mesh's own
 /// coordinates; a body's world transform is the product of its node's ancestors' local
 /// transforms. The up axis and unit follow the format's convention (glTF: +Y, metres; FBX:
 /// converted to metres, its UpAxis setting; OBJ, PLY, STL, OFF: +Y as Blender writes OBJ, +Z as
@@ -51,20 +52,19 @@ struct ImportedScene {
   std::vector<SceneMaterial> materials;
 };
 
-/// One node instance of one mesh.
+/// One node instance of its meshes (one surface, each part with its material).
 struct SceneBody {
   int node = -1;
-  int mesh = -1;
+  std::vector<int> meshes;      ///< the node's, in order: indices into ImportedScene::meshes
   Eigen::Matrix4d world = Eigen::Matrix4d::Identity();  ///< mesh frame → world, m
-  /// The node's path, with "/MESH_NAME" appended when the node holds more than one mesh.
-  std::string path;
+  std::string path;             ///< the node's path
 };
 
 /// Reads `path`. Throws IoError naming the file when it is missing, corrupt or of a format not
 /// listed above, and InvalidInput when it holds no triangles (the messages of import_surface()).
 ImportedScene import_scene(const std::filesystem::path& path);
 
-/// Every body of the scene, in node order, then mesh order within a node.
+/// Every body of the scene (every node holding a mesh), in node order.
 std::vector<SceneBody> scene_bodies(const ImportedScene& scene);
 
 }  // namespace fissure
