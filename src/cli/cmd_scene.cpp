@@ -1,22 +1,36 @@
 // fissure scene info SCENE [--json]: a scene's bodies (node instances of meshes), their scene
 // materials, sizes and whether each can be fractured (closed or safely repaired), and the
-// materials' texture references, missing ones named. Issue 13's `scene fracture` and `scene
-// merge` join it here.
+// materials' texture references, missing ones named.
+// fissure scene fracture SCENE --assign NAME=MATERIAL… [--seed S] [--age A] [--up AXIS] [--tets N]
+//   [--bodies K/N] [--strict] [--report R.json] -o OUT: every assigned body fractured, the scene
+//   written back with the fragments as child nodes (scene/scene_fracture.hpp).
+// fissure scene demo street|bathroom -o OUT: the demo scenes of assets/scenes/ (scene/demo_scenes.hpp).
 
 #include "cli_common.hpp"
 #include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
+#include "option_checks.hpp"
 #include "terminal_progress.hpp"
 
+#include "fissure/base/atomic_file.hpp"
+#include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
+#include "fissure/base/thread_count.hpp"
+#include "fissure/fracture/fracture_scenario.hpp"
+#include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
+#include "fissure/scene/demo_scenes.hpp"
 #include "fissure/scene/scene_body_check.hpp"
+#include "fissure/scene/scene_fracture.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 
 namespace fissure::cli {
 namespace {
@@ -63,7 +77,22 @@ int run_scene_info(const SceneInfoArgs& args) {
   }
   throw_if_interrupted();
   progress.clear();
-  const auto material_name = [&](int m) { return m < 0 ? std::string() : scene.materials[static_cast<std::size_t>(m)].name; };
+  // A body's meshes and their scene materials, ", "-separated (a mesh split by material is one body).
+  const auto mesh_names = [&](const SceneBody& b) {
+    std::string names;
+    for (int m : b.meshes) names += (names.empty() ? "" : ", ") + scene.meshes[static_cast<std::size_t>(m)].name;
+    return names;
+  };
+  const auto material_names = [&](const SceneBody& b) {
+    std::string names;
+    for (int m : b.meshes) {
+      const int k = scene.meshes[static_cast<std::size_t>(m)].material;
+      if (k < 0) continue;
+      const std::string& name = scene.materials[static_cast<std::size_t>(k)].name;
+      if (names.find(name) == std::string::npos) names += (names.empty() ? "" : ", ") + name;
+    }
+    return names;
+  };
   int fracturable = 0;
   for (const SceneBodyCheck& c : checks) fracturable += c.fracturable ? 1 : 0;
   if (args.json) {
@@ -82,12 +111,11 @@ int run_scene_info(const SceneInfoArgs& args) {
     j["materials"] = materials;
     nlohmann::ordered_json list = nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < bodies.size(); ++i) {
-      const SceneMesh& mesh = scene.meshes[static_cast<std::size_t>(bodies[i].mesh)];
       const SceneBodyCheck& c = checks[i];
       nlohmann::ordered_json b = {{"path", bodies[i].path},
-                                  {"mesh", mesh.name},
-                                  {"material", material_name(mesh.material)},
-                                  {"triangles", mesh.triangles.rows()},
+                                  {"mesh", mesh_names(bodies[i])},
+                                  {"material", material_names(bodies[i])},
+                                  {"triangles", c.world.faces.rows()},
                                   {"size", {c.extent.x(), c.extent.y(), c.extent.z()}},
                                   {"fracturable", c.fracturable}};
       if (c.fracturable) {
@@ -107,17 +135,17 @@ int run_scene_info(const SceneInfoArgs& args) {
               scene.materials.size(), bodies.size(), fracturable);
   const auto f = [](double x) { return format_number(x, 3); };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const SceneMesh& mesh = scene.meshes[static_cast<std::size_t>(bodies[i].mesh)];
     const SceneBodyCheck& c = checks[i];
-    const std::string material = material_name(mesh.material);
+    const std::string material = material_names(bodies[i]);
     std::string state = c.fracturable ? "closed" : "not fracturable: " + c.reason;
     if (c.fracturable && !c.repairs.empty()) {
       state = "repaired (";
       for (std::size_t k = 0; k < c.repairs.size(); ++k) state += (k ? "; " : "") + c.repairs[k];
       state += ")";
     }
-    std::printf("  %s: mesh %s, material %s, %lld triangles, %s x %s x %s m, %s\n", bodies[i].path.c_str(), mesh.name.c_str(),
-                material.empty() ? "(none)" : material.c_str(), static_cast<long long>(mesh.triangles.rows()),
+    std::printf("  %s: mesh %s, material %s, %lld triangles, %s x %s x %s m, %s\n", bodies[i].path.c_str(),
+                mesh_names(bodies[i]).c_str(), material.empty() ? "(none)" : material.c_str(),
+                static_cast<long long>(c.world.faces.rows()),
                 f(c.extent.x()).c_str(), f(c.extent.y()).c_str(), f(c.extent.z()).c_str(), state.c_str());
   }
   for (const SceneMaterial& m : scene.materials) {
@@ -125,6 +153,161 @@ int run_scene_info(const SceneInfoArgs& args) {
     for (const std::string& t : m.textures) line += ", texture " + t + (texture_found(args.scene, t) ? "" : " (missing)");
     std::printf("%s\n", line.c_str());
   }
+  return kExitOk;
+}
+
+struct SceneFractureArgs {
+  std::string scene;
+  std::vector<std::string> assign;
+  std::uint64_t seed = 1;
+  double age = -1.0;  // < 0: each material's
+  std::string up;
+  double tets = 0;
+  std::string bodies;
+  bool strict = false;
+  std::string report;
+  std::string output;
+  bool quiet = false;
+};
+
+// "--assign NAME=MATERIAL": NAME is a scene material, or a node or body path when it starts with '/'.
+SceneAssignments parse_assignments(const std::vector<std::string>& specs) {
+  SceneAssignments a;
+  for (const std::string& spec : specs) {
+    const std::size_t eq = spec.rfind('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
+      throw InvalidInput("--assign " + spec + ": expected SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL");
+    const std::string key = spec.substr(0, eq), material = spec.substr(eq + 1);
+    auto& map = key[0] == '/' ? a.by_path : a.by_material;
+    if (!map.emplace(key, material).second) throw InvalidInput("--assign " + key + " is given twice");
+  }
+  return a;
+}
+
+std::pair<int, int> parse_slice(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  int k = 0, n = 0;
+  try {
+    std::size_t used = 0;
+    if (slash == std::string::npos) throw InvalidInput("");
+    k = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw InvalidInput("");
+    n = std::stoi(text.substr(slash + 1), &used);
+    if (used != text.size() - slash - 1) throw InvalidInput("");
+  } catch (const std::exception&) {
+    throw InvalidInput("--bodies " + text + ": expected K/N, K from 1 to N");
+  }
+  if (n < 1 || k < 1 || k > n) throw InvalidInput("--bodies " + text + ": expected K/N, K from 1 to N");
+  return {k, n};
+}
+
+nlohmann::ordered_json report_json(const SceneFracture& run, const SceneFractureArgs& args, double seconds) {
+  nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
+  for (const SceneBodyReport& r : run.reports) {
+    nlohmann::ordered_json b = {{"path", r.path}, {"status", status_name(r.status)}};
+    if (!r.material.empty()) b["assignment"] = r.material;
+    if (r.status == SceneBodyReport::Status::Fractured || r.status == SceneBodyReport::Status::Skipped) b["seed"] = r.seed;
+    if (r.status == SceneBodyReport::Status::Skipped) b["reason"] = r.reason;
+    if (!r.repairs.empty()) b["repairs"] = r.repairs;
+    if (r.status == SceneBodyReport::Status::Fractured) {
+      b["material"] = r.material_name;
+      b["fragments"] = r.fragments;
+      b["tets"] = r.tets;
+      b["seconds"] = {{"meshing", r.seconds.meshing},
+                      {"preparation", r.seconds.preparation},
+                      {"simulation", r.seconds.simulation},
+                      {"fragments", r.seconds.fragments}};
+    }
+    bodies.push_back(b);
+  }
+  return {{"scene", args.scene}, {"output", args.output}, {"seed", args.seed}, {"warnings", run.warnings},
+          {"seconds", seconds}, {"bodies", bodies}};
+}
+
+int run_scene_fracture(const SceneFractureArgs& args) {
+  check_scene_output_path(args.output);
+  if (!args.report.empty()) check_output_path(args.report);
+  SceneFractureOptions options;
+  options.assignments = parse_assignments(args.assign);
+  if (options.assignments.by_material.empty() && options.assignments.by_path.empty())
+    throw InvalidInput("nothing to fracture: give --assign SCENE_MATERIAL=MATERIAL (fissure scene info lists the scene's materials)");
+  options.seed = args.seed;
+  if (args.age >= 0.0) options.age = args.age;
+  if (!args.up.empty()) options.up = parse_up_axis(args.up);
+  options.target_tets = static_cast<int>(std::lround(args.tets));
+  if (!args.bodies.empty()) std::tie(options.slice, options.slices) = parse_slice(args.bodies);
+  options.threads = thread_count();
+  options.cancel = &interrupt_token();
+  // A bar on a terminal, one plain line per body otherwise (a log keeps them).
+  TerminalProgress progress(args.quiet);
+  const bool lines = !args.quiet && !progress.enabled();
+  options.on_body_done = [&](int done, int total, const std::string& path) {
+    if (lines) {
+      std::fprintf(stderr, "fissure scene fracture: %d/%d %s\n", done, total, path.c_str());
+    } else {
+      progress.report("fracturing bodies", static_cast<double>(done) / total);
+    }
+  };
+  const auto start = std::chrono::steady_clock::now();
+  ImportedScene scene;
+  SceneFracture run;
+  ExportScene out;
+  {
+    AbandonableWork work;
+    progress.stage("reading " + args.scene);
+    scene = import_scene(args.scene);
+    run = fracture_scene(scene, options);
+    throw_if_interrupted();
+    out = scene_export(scene, run);
+  }
+  throw_if_interrupted();
+  progress.clear();
+  int fractured = 0, skipped = 0, fragments = 0;
+  for (const std::string& w : run.warnings) std::cerr << "fissure scene fracture: warning: " << w << '\n';
+  for (const SceneBodyReport& r : run.reports) {
+    if (r.status == SceneBodyReport::Status::Fractured) {
+      ++fractured;
+      fragments += r.fragments;
+    } else if (r.status == SceneBodyReport::Status::Skipped) {
+      ++skipped;
+      std::cerr << "fissure scene fracture: warning: " << r.path << " skipped: " << r.reason << '\n';
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!args.report.empty()) write_file_atomically(args.report, report_json(run, args, seconds).dump(2) + "\n");
+  if (args.strict && (skipped > 0 || !run.warnings.empty())) {
+    throw InvalidInput("--strict: " + std::to_string(skipped) + " bodies skipped, " + std::to_string(run.warnings.size()) +
+                       " assignments unmatched (see above); nothing written to " + args.output);
+  }
+  write_scene(args.output, out);
+  if (!args.quiet) {
+    std::printf("%s: %d bodies fractured into %d fragments, %d skipped, %zu untouched; wrote %s in %s s\n",
+                args.scene.c_str(), fractured, fragments, skipped, run.reports.size() - fractured - skipped,
+                args.output.c_str(), format_number(seconds, 3).c_str());
+  }
+  return kExitOk;
+}
+
+struct SceneDemoArgs {
+  std::string which;
+  std::string output;
+  int slabs_along = DemoStreetOptions{}.slabs_along;
+  int slabs_across = DemoStreetOptions{}.slabs_across;
+};
+
+int run_scene_demo(const SceneDemoArgs& args) {
+  ExportScene scene;
+  if (args.which == "street") {
+    DemoStreetOptions o;
+    o.slabs_along = args.slabs_along;
+    o.slabs_across = args.slabs_across;
+    scene = demo_street(o);
+  } else if (args.which == "bathroom") {
+    scene = demo_bathroom();
+  } else {
+    throw InvalidInput("scene demo " + args.which + ": the demos are street and bathroom");
+  }
+  write_scene(args.output, scene);
   return kExitOk;
 }
 
@@ -140,6 +323,34 @@ void register_scene(CLI::App& app, Action& action) {
   info->add_flag("--json", args->json, "Print the result as JSON");
   info->add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   info->callback([&action, args] { action = [args] { return run_scene_info(*args); }; });
+
+  auto fr = std::make_shared<SceneFractureArgs>();
+  auto* fracture = cmd->add_subcommand("fracture", "Fracture every body of the assigned materials and write the scene with its fragments");
+  add_threads_option(*fracture);
+  fracture->add_option("SCENE", fr->scene, "Scene file (glTF, GLB, FBX, OBJ, PLY, STL, OFF)")->required();
+  fracture->add_option("--assign", fr->assign,
+                       "SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL (repeatable): a fracture material file or a "
+                       "library name for every body of that scene material, or for one node (overrides)");
+  fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path")->default_val(1);
+  fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(CLI::Range(0.0, 1e6));
+  fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
+  fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
+      ->type_name("INT")
+      ->check(count_in(10, 5e7));
+  fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are");
+  fracture->add_flag("--strict", fr->strict, "Fail (and write nothing) when a body is skipped or an assignment matches nothing");
+  fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
+  fracture->add_option("-o,--output", fr->output, "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply")->required();
+  fracture->add_flag("-q,--quiet", fr->quiet, "Print nothing on success, no progress");
+  fracture->callback([&action, fr] { action = [fr] { return run_scene_fracture(*fr); }; });
+
+  auto demo_args = std::make_shared<SceneDemoArgs>();
+  auto* demo = cmd->add_subcommand("demo", "Write a demo scene (street or bathroom), as in assets/scenes/");
+  demo->add_option("WHICH", demo_args->which, "street or bathroom")->required();
+  demo->add_option("--slabs", demo_args->slabs_along, "Street: slabs along the kerb")->check(CLI::Range(1, 1000));
+  demo->add_option("--rows", demo_args->slabs_across, "Street: rows of slabs")->check(CLI::Range(1, 100));
+  demo->add_option("-o,--output", demo_args->output, "Output: .glb, .gltf, .obj or .ply")->required();
+  demo->callback([&action, demo_args] { action = [demo_args] { return run_scene_demo(*demo_args); }; });
 }
 
 }  // namespace fissure::cli

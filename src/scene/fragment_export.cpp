@@ -47,14 +47,14 @@ Eigen::Matrix<double, 2, 3> chart_basis(int chart, const std::vector<CrackSurfac
 // The scene's materials: the input's (or `surface`), then the crack's, named apart from them.
 std::vector<ExportMaterial> scene_materials(const SurfaceAppearance& appearance) {
   std::vector<ExportMaterial> materials;
-  for (const auto& m : appearance.materials) materials.push_back({m.name, m.colour});
-  if (materials.empty()) materials.push_back({"surface", Eigen::Vector3d(0.62, 0.60, 0.56)});
+  for (const auto& m : appearance.materials) materials.push_back({m.name, m.colour, {}});
+  if (materials.empty()) materials.push_back({"surface", Eigen::Vector3d(0.62, 0.60, 0.56), {}});
   std::string crack = "crack";
   for (int k = 1; std::any_of(materials.begin(), materials.end(), [&](const ExportMaterial& m) { return m.name == crack; }); ++k) {
     const std::string digits = std::to_string(k);
     crack = "crack." + std::string(digits.size() < 3 ? 3 - digits.size() : 0, '0') + digits;
   }
-  materials.push_back({crack, Eigen::Vector3d(0.30, 0.28, 0.26)});
+  materials.push_back({crack, Eigen::Vector3d(0.30, 0.28, 0.26), {}});
   return materials;
 }
 

@@ -13,9 +13,11 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/mesh/tile.hpp"
 
+#include "../support/closed_surface.hpp"
 #include "../support/test_shapes.hpp"
 
 #include <Eigen/Geometry>
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -28,29 +30,10 @@
 namespace fissure {
 namespace {
 
-// Every edge used once each way (closed, consistently wound, 2-manifold); with `pinched`, an
-// edge may be used k times each way (k sheets of the surface touching along it), and the
-// number of such edges is added to *pinched.
+// Every edge used once each way (closed, consistently wound, 2-manifold); with `pinched`, edges
+// where sheets of the surface touch are counted instead (closed_surface.hpp).
 ::testing::AssertionResult closed(const FragmentMesh& m, int* pinched = nullptr) {
-  std::map<std::pair<int, int>, int> edges;
-  for (Eigen::Index t = 0; t < m.triangles.rows(); ++t) {
-    const Eigen::Vector3d a = m.vertices.row(m.triangles(t, 0)), b = m.vertices.row(m.triangles(t, 1)),
-                          c = m.vertices.row(m.triangles(t, 2));
-    if (!((b - a).cross(c - a).norm() > 0.0)) return ::testing::AssertionFailure() << "triangle " << t << " has no area";
-    for (int i = 0; i < 3; ++i) ++edges[{m.triangles(t, i), m.triangles(t, (i + 1) % 3)}];
-  }
-  for (const auto& [e, count] : edges) {
-    const auto it = edges.find({e.second, e.first});
-    const int reverse = it == edges.end() ? 0 : it->second;
-    if (pinched && count == reverse && count > 1) {
-      ++*pinched;
-      continue;
-    }
-    if (count != 1 || reverse != 1)
-      return ::testing::AssertionFailure() << "edge " << e.first << "→" << e.second << " used " << count
-                                           << " times, its reverse " << reverse;
-  }
-  return ::testing::AssertionSuccess();
+  return test::closed_surface(m.vertices, m.triangles, pinched);
 }
 
 // Σ area vector of each crack's triangles over all fragments: zero when every crack face has its

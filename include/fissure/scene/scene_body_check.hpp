@@ -16,10 +16,15 @@ namespace fissure {
 struct SceneBodyCheck {
   bool fracturable = false;
   std::string reason;                ///< why not, when not fracturable ("open: 12 border edges")
-  std::vector<std::string> repairs;  ///< what was repaired, when fracturable
-  /// The body in world coordinates (its node's world transform applied), repaired when
-  /// fracturable, as read otherwise. source_name: "SCENE:/node/path".
+  /// What was repaired, when fracturable. Vertices welded where a file splits them at UV and
+  /// material seams are not listed: that is how textured meshes are stored, not a defect.
+  std::vector<std::string> repairs;
+  /// The body in world coordinates (its node's world transform applied), its meshes joined,
+  /// repaired when fracturable, as read otherwise. source_name: "SCENE:/node/path". Its
+  /// appearance holds the meshes' materials and UVs per triangle, for the fragments' outer faces.
   SurfaceMesh world;
+  /// Per material of world.appearance, the scene material's index (-1: the mesh named none).
+  std::vector<int> scene_materials;
   Eigen::Vector3d extent = Eigen::Vector3d::Zero();  ///< world bounding-box size, m
   double volume = 0.0;               ///< enclosed volume, m³ (0 when not fracturable)
 };

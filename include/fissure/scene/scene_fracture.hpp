@@ -1,0 +1,100 @@
+#pragma once
+/// "Fracture all bodies of this material" over a whole scene (issue 13), and the scene written
+/// back with the fragments in it. Qt-free: `fissure scene fracture` and the studio call it.
+///
+/// - Assignments: a fracture material (a file path, or a name looked up by find_material():
+///   the bundled library, then the user library) per scene material name, and per node path,
+///   which overrides and covers the node's descendants (the nearest assigned ancestor wins). A body with no assignment is never checked, tetrahedralised or
+///   analysed: it costs nothing (the `mesher` hook lets a test prove it).
+/// - Each assigned body gets its own seed, body_seed(project seed, body path), and with it its
+///   own resistance field, noise, load position and, for a material with a posterior, its own
+///   parameter draw: bodies sharing a material break "similar, not identical". The result does
+///   not depend on the thread count or on which other bodies are assigned.
+/// - A body that cannot be fractured (open, self-intersecting, no face to rest on, a material
+///   file that does not load) is skipped with its reason; the others go on.
+/// - Slices: slice K of N fractures the assigned bodies whose ordinal among the assigned ones is
+///   K − 1 modulo N, leaving the rest as they are (a job array's share).
+#include "fissure/io/scene_export.hpp"
+#include "fissure/io/scene_import.hpp"
+#include "fissure/scene/body_fracture.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+struct SceneAssignments {
+  std::map<std::string, std::string> by_material;  ///< scene material name → fracture material
+  std::map<std::string, std::string> by_path;      ///< node path → fracture material (and its subtree)
+};
+
+struct SceneFractureOptions {
+  SceneAssignments assignments;
+  std::uint64_t seed = 1;                 ///< the project seed
+  std::optional<double> age;              ///< unset: each material's
+  std::optional<Eigen::Vector3d> up;      ///< unset: the scene's (its format's convention)
+  int target_tets = 0;                    ///< per body; 0: BodyFractureRequest's default
+  int threads = 1;                        ///< bodies run in parallel, one thread each
+  int slice = 1, slices = 1;              ///< K of N, K from 1
+  Mesher mesher;                          ///< empty: tetrahedralize()
+  const CancelToken* cancel = nullptr;
+  /// Called after each assigned body of the slice finishes (from worker threads, one at a time):
+  /// bodies done, bodies to do, the body's path.
+  std::function<void(int, int, const std::string&)> on_body_done;
+};
+
+struct SceneBodyReport {
+  enum class Status { Fractured, Skipped, Unassigned, OtherSlice };
+  std::string path;
+  Status status = Status::Unassigned;
+  std::string reason;                     ///< why skipped
+  std::vector<std::string> repairs;       ///< what the check repaired
+  std::string material;                   ///< the assignment as given, and the material's name
+  std::string material_name;
+  std::uint64_t seed = 0;
+  int fragments = 0;                      ///< closed meshes
+  int tets = 0;
+  BodyFracture::Seconds seconds;
+};
+
+/// "fractured", "skipped", "unassigned", "other slice".
+const char* status_name(SceneBodyReport::Status status);
+
+/// A fractured body: its fragments, and its surface's look for their outer faces.
+struct FracturedSceneBody {
+  BodyFracture fracture;
+  SurfaceAppearance appearance;           ///< world coordinates (scene_body_check.hpp)
+  std::vector<int> scene_materials;       ///< per appearance material, the scene's index (-1: none)
+};
+
+struct SceneFracture {
+  std::vector<SceneBody> bodies;          ///< scene_bodies() of the scene
+  std::vector<SceneBodyReport> reports;   ///< one per body
+  std::vector<std::optional<FracturedSceneBody>> results;  ///< one per body, set when fractured
+  /// Assignments that match nothing in the scene ("--assign tiles=…: the scene has no material
+  /// tiles (it has: a, b)"); the run goes on without them.
+  std::vector<std::string> warnings;
+};
+
+/// The body's own seed: a hash of (project seed, body path).
+std::uint64_t body_seed(std::uint64_t project_seed, const std::string& path);
+
+/// Fractures every assigned body of `scene` (of the slice). Throws InvalidInput for bad options
+/// (a slice outside 1..N), Cancelled through options.cancel; a body's own failure is its report.
+SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOptions& options);
+
+/// The scene as it was read, with each fractured body's mesh replaced by one child node per
+/// fragment (fragment_NNN, in the body's node frame, the crack material added, the fragment's
+/// extras: scene/fragment_export.hpp) and everything else kept: node names, hierarchy,
+/// transforms, materials, colours and base-colour texture references (a texture embedded in the
+/// input, and maps other than the base colour, are not carried). An untouched body is its node's
+/// geometry, one primitive per material. The root node an importer adds above a glTF's scene
+/// nodes is left out, so an export imports back as it was. Meshes shared by several nodes are
+/// written once per node.
+ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fracture);
+
+}  // namespace fissure

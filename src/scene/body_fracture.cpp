@@ -1,0 +1,84 @@
+#include "fissure/scene/body_fracture.hpp"
+
+#include "fissure/base/error.hpp"
+#include "fissure/fracture/fitted_transfer.hpp"
+#include "fissure/fracture/material_fit.hpp"
+#include "fissure/fracture/prepared_body.hpp"
+#include "fissure/fracture/resistance_field.hpp"
+#include "fissure/fracture/simulation.hpp"
+
+#include <chrono>
+#include <memory>
+
+namespace fissure {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threads, const Mesher& mesher,
+                                   const CancelToken* cancel) {
+  BodyFracture out;
+  const std::optional<MaterialFit>& fit = request.material.fit;
+  FractureParams params = request.material.params;
+  if (fit && !fit->samples.empty()) {
+    params = draw_from_posterior(*fit, params, request.seed);
+    out.posterior_draw = true;
+  }
+  if (request.age) params.age = *request.age;
+  params.validate();
+
+  auto clock = std::chrono::steady_clock::now();
+  TetrahedralizeOptions mesh_options;
+  mesh_options.target_tets = request.target_tets > 0 ? request.target_tets
+                             : fit && fit->body_tets > 0 ? fit->body_tets
+                                                         : kDefaultBodyTets;
+  auto mesh = std::make_shared<const TetMesh>(mesher ? mesher(request.surface, mesh_options)
+                                                     : tetrahedralize(request.surface, mesh_options, nullptr, nullptr, cancel));
+  out.tets = mesh->tet_count();
+  out.seconds.meshing = seconds_since(clock);
+  if (cancel) cancel->throw_if_cancelled();
+
+  clock = std::chrono::steady_clock::now();
+  if (fit) params = fitted_params_on(*fit, params, *mesh, request.up, &out.length_scale);
+  FractureScenario scenario;
+  scenario.up = request.up;
+  scenario.free_body = request.free_body;
+  scenario.supports = request.supports;
+  scenario.loads = request.loads;
+  // The fitted rule's patch pushes with 1 N until the body is prepared: the force that keeps the
+  // fit's stress takes the prepared body to measure.
+  const bool fitted_load_rule = fit && request.loads.empty();
+  if (fitted_load_rule) scenario.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, 1.0, request.seed)};
+  const PreparedBody prepared(mesh, params.elastic(), scenario, threads);
+  StressField initial = prepared.initial_stress(params);
+  out.loads = prepared.loads();
+  if (fitted_load_rule) {
+    const double force = fitted_load_force(*fit, params, prepared);
+    initial *= force;
+    out.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, force, request.seed)};
+  } else if (prepared.default_load()) {
+    out.loads = {default_load(*mesh, request.up, params.load_factor * prepared.fracture_body().mass(params.density) * kStandardGravity,
+                              scenario.patch_radius)};
+  }
+  const Eigen::VectorXd resistance = draw_resistance(mesh->centroids(), params, request.seed, threads);
+  out.seconds.preparation = seconds_since(clock);
+  if (cancel) cancel->throw_if_cancelled();
+
+  clock = std::chrono::steady_clock::now();
+  SimulationOptions options;
+  options.cancel = cancel;
+  out.result = simulate_fracture(prepared.fracture_body(), params, initial, resistance, request.seed, options);
+  out.seconds.simulation = seconds_since(clock);
+
+  clock = std::chrono::steady_clock::now();
+  out.fragments = mesh_fragments(*mesh, out.result.cracks, static_cast<int>(out.result.cracks.size()), threads);
+  out.seconds.fragments = seconds_since(clock);
+  out.params = params;
+  return out;
+}
+
+}  // namespace fissure

@@ -1,0 +1,270 @@
+#include "fissure/scene/scene_fracture.hpp"
+
+#include "fissure/base/content_hash.hpp"
+#include "fissure/base/error.hpp"
+#include "fissure/base/parallel.hpp"
+#include "fissure/scene/fragment_export.hpp"
+#include "fissure/scene/scene_body_check.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <memory>
+#include <mutex>
+#include <set>
+
+namespace fissure {
+namespace {
+
+// The assignment of `body`, or nothing: its node's or its nearest assigned ancestor's, else that
+// of the first of its meshes' scene materials that has one.
+const std::string* assignment_of(const ImportedScene& scene, const SceneBody& body, const SceneAssignments& a) {
+  for (int n = body.node; n >= 0; n = scene.nodes[static_cast<std::size_t>(n)].parent) {
+    if (auto it = a.by_path.find(scene.nodes[static_cast<std::size_t>(n)].path); it != a.by_path.end()) return &it->second;
+  }
+  for (int mesh : body.meshes) {
+    const int m = scene.meshes[static_cast<std::size_t>(mesh)].material;
+    if (m < 0) continue;
+    if (auto it = a.by_material.find(scene.materials[static_cast<std::size_t>(m)].name); it != a.by_material.end())
+      return &it->second;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> unmatched_assignments(const ImportedScene& scene, const std::vector<SceneBody>& bodies,
+                                               const SceneAssignments& a) {
+  std::vector<std::string> warnings;
+  std::set<std::string> material_names, paths;
+  for (const SceneMaterial& m : scene.materials) material_names.insert(m.name);
+  for (const SceneNode& n : scene.nodes) paths.insert(n.path);
+  for (const auto& [name, material] : a.by_material) {
+    if (material_names.count(name)) continue;
+    std::string list;
+    for (const std::string& n : material_names) list += (list.empty() ? "" : ", ") + n;
+    warnings.push_back("assignment " + name + "=" + material + ": the scene has no material " + name + " (it has: " +
+                       (list.empty() ? std::string("none") : list) + ")");
+  }
+  for (const auto& [path, material] : a.by_path) {
+    if (!paths.count(path)) warnings.push_back("assignment " + path + "=" + material + ": the scene has no node " + path);
+  }
+  return warnings;
+}
+
+}  // namespace
+
+const char* status_name(SceneBodyReport::Status status) {
+  switch (status) {
+    case SceneBodyReport::Status::Fractured: return "fractured";
+    case SceneBodyReport::Status::Skipped: return "skipped";
+    case SceneBodyReport::Status::Unassigned: return "unassigned";
+    case SceneBodyReport::Status::OtherSlice: return "other slice";
+  }
+  return "unknown";
+}
+
+std::uint64_t body_seed(std::uint64_t project_seed, const std::string& path) {
+  return ContentHasher().add("fissure body seed").add(static_cast<std::int64_t>(project_seed)).add(path).finish().lo;
+}
+
+SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOptions& options) {
+  if (options.slices < 1 || options.slice < 1 || options.slice > options.slices) {
+    throw InvalidInput("--bodies " + std::to_string(options.slice) + "/" + std::to_string(options.slices) +
+                       ": K must be in 1..N");
+  }
+  SceneFracture out;
+  out.bodies = scene_bodies(scene);
+  out.warnings = unmatched_assignments(scene, out.bodies, options.assignments);
+  out.reports.resize(out.bodies.size());
+  out.results.resize(out.bodies.size());
+
+  // The bodies of this slice, and their materials, each file loaded once.
+  std::vector<std::size_t> work;
+  std::map<std::string, std::shared_ptr<const FractureMaterial>> materials;
+  std::map<std::string, std::string> material_errors;
+  int assigned = 0;
+  for (std::size_t b = 0; b < out.bodies.size(); ++b) {
+    SceneBodyReport& report = out.reports[b];
+    report.path = out.bodies[b].path;
+    const std::string* assignment = assignment_of(scene, out.bodies[b], options.assignments);
+    if (!assignment) continue;  // Unassigned: nothing about it is computed
+    report.material = *assignment;
+    report.seed = body_seed(options.seed, report.path);
+    if (assigned++ % options.slices != options.slice - 1) {
+      report.status = SceneBodyReport::Status::OtherSlice;
+      continue;
+    }
+    if (!materials.count(*assignment) && !material_errors.count(*assignment)) {
+      try {
+        materials[*assignment] = std::make_shared<const FractureMaterial>(load_material(find_material(*assignment)));
+      } catch (const Error& e) {
+        material_errors[*assignment] = e.what();
+      }
+    }
+    if (auto it = material_errors.find(*assignment); it != material_errors.end()) {
+      report.status = SceneBodyReport::Status::Skipped;
+      report.reason = it->second;
+      continue;
+    }
+    report.material_name = materials[*assignment]->name;
+    work.push_back(b);
+  }
+
+  const Eigen::Vector3d up = (options.up ? *options.up : scene.up).normalized();
+  std::mutex done_mutex;
+  int done = 0;
+  parallel_for_dynamic(work.size(), options.threads, [&](std::size_t w) {
+    const std::size_t b = work[w];
+    SceneBodyReport& report = out.reports[b];
+    try {
+      SceneBodyCheck check = check_scene_body(scene, out.bodies[b]);
+      report.repairs = check.repairs;
+      if (!check.fracturable) throw InvalidInput(check.reason);
+      BodyFractureRequest request;
+      FracturedSceneBody done_body;
+      done_body.appearance = check.world.appearance;
+      done_body.scene_materials = check.scene_materials;
+      request.surface = std::move(check.world);
+      request.material = *materials.at(report.material);
+      request.up = up;
+      request.seed = report.seed;
+      request.age = options.age;
+      request.target_tets = options.target_tets;
+      done_body.fracture = fracture_body_surface(request, 1, options.mesher, options.cancel);
+      const BodyFracture& result = done_body.fracture;
+      report.status = SceneBodyReport::Status::Fractured;
+      report.fragments = static_cast<int>(result.fragments.size());
+      report.tets = result.tets;
+      report.seconds = result.seconds;
+      out.results[b] = std::move(done_body);
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const Error& e) {
+      report.status = SceneBodyReport::Status::Skipped;
+      report.reason = e.what();
+    }
+    if (options.on_body_done) {
+      const std::lock_guard<std::mutex> lock(done_mutex);
+      options.on_body_done(++done, static_cast<int>(work.size()), report.path);
+    }
+  });
+  return out;
+}
+
+ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fracture) {
+  ExportScene out;
+  // Materials: the scene's, a default for meshes with none, and the crack material when a body
+  // broke (named so it clashes with none of the scene's).
+  std::set<std::string> names;
+  for (const SceneMaterial& m : scene.materials) {
+    ExportMaterial e;
+    e.name = m.name;
+    e.colour = m.colour;
+    // The base colour's file reference; a texture embedded in the input ("*0") has no file to name.
+    if (!m.textures.empty() && m.textures.front().rfind('*', 0) != 0) e.texture = m.textures.front();
+    out.materials.push_back(e);
+    names.insert(m.name);
+  }
+  int default_material = -1, crack_material = -1;
+  auto unique_name = [&](const std::string& base) {
+    std::string name = base;
+    for (int k = 1; names.count(name); ++k) name = base + "." + (k < 10 ? "00" : k < 100 ? "0" : "") + std::to_string(k);
+    names.insert(name);
+    return name;
+  };
+
+  auto default_index = [&] {
+    if (default_material < 0) {
+      default_material = static_cast<int>(out.materials.size());
+      out.materials.push_back({unique_name("default"), Eigen::Vector3d::Constant(0.8), {}});
+    }
+    return default_material;
+  };
+
+  std::vector<int> body_of_node(scene.nodes.size(), -1);
+  for (std::size_t b = 0; b < fracture.bodies.size(); ++b)
+    body_of_node[static_cast<std::size_t>(fracture.bodies[b].node)] = static_cast<int>(b);
+
+  // The importer's own root above a glTF's scene nodes (assimp's "ROOT": no mesh, no transform).
+  const SceneNode& root = scene.nodes.front();
+  const bool skip_root = (scene.format == "gltf" || scene.format == "glb") && root.name == "ROOT" && root.meshes.empty() &&
+                         root.local.isIdentity(0.0) && scene.nodes.size() > 1;
+
+  std::vector<int> part_of_node(scene.nodes.size(), -1);
+  for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+    if (n == 0 && skip_root) continue;
+    const SceneNode& node = scene.nodes[n];
+    ExportPart part;
+    part.name = node.name;
+    part.parent = node.parent < 0 ? -1 : part_of_node[static_cast<std::size_t>(node.parent)];
+    part.linear = node.local.topLeftCorner<3, 3>();
+    part.translation = node.local.topRightCorner<3, 1>();
+    const int node_part = static_cast<int>(out.parts.size());
+    part_of_node[n] = node_part;
+    out.parts.push_back(std::move(part));
+    if (body_of_node[n] < 0) continue;
+
+    const std::size_t b = static_cast<std::size_t>(body_of_node[n]);
+    const SceneBody& body = fracture.bodies[b];
+    const std::optional<FracturedSceneBody>& result = fracture.results[b];
+    if (!result) {
+      // As read, in the node's frame: its meshes joined, one primitive per material.
+      ExportPart& p = out.parts[static_cast<std::size_t>(node_part)];
+      Eigen::Index vertices = 0, triangles = 0;
+      bool any_uvs = false;
+      for (int m : body.meshes) {
+        vertices += scene.meshes[static_cast<std::size_t>(m)].vertices.rows();
+        triangles += scene.meshes[static_cast<std::size_t>(m)].triangles.rows();
+        any_uvs = any_uvs || scene.meshes[static_cast<std::size_t>(m)].uvs.rows() > 0;
+      }
+      p.vertices.resize(vertices, 3);
+      p.triangles.resize(triangles, 3);
+      if (any_uvs) p.uvs.setZero(vertices, 2);
+      Eigen::Index v0 = 0, t0 = 0;
+      for (int m : body.meshes) {
+        const SceneMesh& mesh = scene.meshes[static_cast<std::size_t>(m)];
+        p.vertices.middleRows(v0, mesh.vertices.rows()) = mesh.vertices;
+        if (mesh.uvs.rows() > 0) p.uvs.middleRows(v0, mesh.uvs.rows()) = mesh.uvs;
+        p.triangles.middleRows(t0, mesh.triangles.rows()) = mesh.triangles.array() + static_cast<int>(v0);
+        p.triangle_material.insert(p.triangle_material.end(), static_cast<std::size_t>(mesh.triangles.rows()),
+                                   mesh.material >= 0 ? mesh.material : default_index());
+        v0 += mesh.vertices.rows();
+        t0 += mesh.triangles.rows();
+      }
+      continue;
+    }
+    const BodyFracture& broken = result->fracture;
+    const SceneBodyReport& report = fracture.reports[b];
+    const nlohmann::ordered_json extras = {{"fissure",
+                                            {{"material", report.material_name},
+                                             {"seed", report.seed},
+                                             {"fragments", broken.fragments.size()},
+                                             {"tets", broken.tets}}}};
+    out.parts[static_cast<std::size_t>(node_part)].extras_json = extras.dump();
+    const ExportScene fragments = fragment_scene(broken.fragments, broken.result.cracks, broken.params.density, result->appearance);
+    if (crack_material < 0) {
+      crack_material = static_cast<int>(out.materials.size());
+      ExportMaterial crack = fragments.materials.back();
+      crack.name = unique_name("crack");
+      out.materials.push_back(crack);
+    }
+    // fragment_scene's materials are the appearance's, then the crack's.
+    std::vector<int> material_map;
+    for (int m : result->scene_materials) material_map.push_back(m >= 0 ? m : default_index());
+    material_map.push_back(crack_material);
+    // World → the node's frame; fragments keep their origins at their centres of mass.
+    const Eigen::Matrix4d to_node = body.world.inverse();
+    const Eigen::Matrix3d linear = to_node.topLeftCorner<3, 3>();
+    for (ExportPart f : fragments.parts) {
+      f.parent = node_part;
+      f.translation = linear * f.translation + to_node.topRightCorner<3, 1>();
+      f.vertices = (f.vertices * linear.transpose()).eval();
+      for (int& m : f.triangle_material) m = material_map[static_cast<std::size_t>(m)];
+      out.parts.push_back(std::move(f));
+    }
+  }
+  return out;
+}
+
+}  // namespace fissure

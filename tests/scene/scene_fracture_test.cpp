@@ -1,0 +1,268 @@
+// Scene fracture (scene/scene_fracture.hpp): a demo street written by Fissure, read back through
+// assimp, fractured body by body and written again. What must hold:
+//  - fracturing nothing writes the scene back as it was (names, hierarchy, transforms to 1e-6,
+//    materials);
+//  - every fractured body's fragments are closed and their volumes sum to the body's; untouched
+//    bodies keep their geometry; slabs sharing a material break differently;
+//  - an unassigned body never reaches the mesher; slices add up to the unsliced run; the
+//    result does not depend on the thread count;
+//  - bad assignments are named and the rest still runs.
+#include "fissure/base/error.hpp"
+#include "fissure/io/scene_export.hpp"
+#include "fissure/io/scene_import.hpp"
+#include "fissure/mesh/surface_repair.hpp"
+#include "fissure/scene/demo_scenes.hpp"
+#include "fissure/scene/scene_body_check.hpp"
+#include "fissure/scene/scene_fracture.hpp"
+
+#include "../support/closed_surface.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <map>
+#include <set>
+
+namespace fissure {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Three slabs, a curb and a road, written as GLB and read back as any user's file would be.
+ImportedScene small_street(const fs::path& dir) {
+  DemoStreetOptions o;
+  o.slabs_along = 3;
+  o.slabs_across = 1;
+  const fs::path file = dir / "street.glb";
+  write_scene(file, demo_street(o));
+  return import_scene(file);
+}
+
+// Every body's world transform by path.
+std::map<std::string, Eigen::Matrix4d> world_by_path(const ImportedScene& scene) {
+  std::map<std::string, Eigen::Matrix4d> out;
+  for (const SceneBody& b : scene_bodies(scene)) out[b.path] = b.world;
+  return out;
+}
+
+SceneFractureOptions tile_options(int tets = 1500) {
+  SceneFractureOptions o;
+  o.assignments.by_material["concrete"] = "ceramic-tile";  // the bundled tile breaks into tens of pieces
+  o.target_tets = tets;
+  return o;
+}
+
+TEST(DemoScenes, EveryBodyIsClosedAndEnclosesItsVolume) {
+  const fs::path dir = test::fresh_temp_dir("demo_scenes");
+  for (const auto& [name, scene] : {std::pair{"street", demo_street()}, std::pair{"bathroom", demo_bathroom()}}) {
+    // The meshes as written, before any reader welds them: each part's triangles closed once its
+    // per-face vertices are merged by position.
+    write_scene(dir / (std::string(name) + ".glb"), scene);
+    const ImportedScene read = import_scene(dir / (std::string(name) + ".glb"));
+    const std::vector<SceneBody> bodies = scene_bodies(read);
+    ASSERT_EQ(bodies.size(), std::string(name) == "street" ? 26u : 30u);
+    for (const SceneBody& b : bodies) {
+      const SceneBodyCheck check = check_scene_body(read, b);
+      EXPECT_TRUE(check.fracturable) << b.path << ": " << check.reason;
+      EXPECT_TRUE(test::closed_surface(check.world.vertices, check.world.faces)) << b.path;
+    }
+  }
+  // A box's volume is its size's product; the basin's, a solid of revolution, is positive and
+  // below its bounding cylinder's.
+  const ExportPart box = box_part("b", {0.3, 0.2, 0.1}, 0);
+  SurfaceMesh s;
+  s.vertices = box.vertices;
+  s.faces = box.triangles;
+  SurfaceRepairReport report;
+  EXPECT_NEAR(signed_volume(repair_surface(s, report)), 0.006, 1e-15);
+}
+
+TEST(SceneFracture, FracturingNothingWritesTheSceneBackAsItWas) {
+  const fs::path dir = test::fresh_temp_dir("scene_round_trip");
+  const ImportedScene scene = small_street(dir);
+  SceneFractureOptions none;
+  const SceneFracture run = fracture_scene(scene, none);
+  for (const SceneBodyReport& r : run.reports) EXPECT_EQ(r.status, SceneBodyReport::Status::Unassigned) << r.path;
+  write_scene(dir / "again.glb", scene_export(scene, run));
+  const ImportedScene again = import_scene(dir / "again.glb");
+
+  ASSERT_EQ(again.nodes.size(), scene.nodes.size());
+  for (std::size_t n = 0; n < scene.nodes.size(); ++n) {
+    EXPECT_EQ(again.nodes[n].path, scene.nodes[n].path);
+    EXPECT_EQ(again.nodes[n].parent, scene.nodes[n].parent);
+    EXPECT_TRUE(again.nodes[n].local.isApprox(scene.nodes[n].local, 1e-6)) << scene.nodes[n].path;
+  }
+  const auto before = world_by_path(scene), after = world_by_path(again);
+  ASSERT_EQ(after.size(), before.size());
+  for (const auto& [path, world] : before) {
+    ASSERT_TRUE(after.count(path)) << path;
+    // float32 in the file: 1e-6 of a metre-sized scene.
+    EXPECT_LT((after.at(path) - world).cwiseAbs().maxCoeff(), 1e-6) << path;
+  }
+  ASSERT_EQ(again.materials.size(), scene.materials.size());
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    EXPECT_EQ(again.materials[m].name, scene.materials[m].name);
+    EXPECT_LT((again.materials[m].colour - scene.materials[m].colour).cwiseAbs().maxCoeff(), 1e-6);
+  }
+  for (std::size_t k = 0; k < scene.meshes.size(); ++k) {
+    EXPECT_EQ(again.meshes[k].triangles.rows(), scene.meshes[k].triangles.rows());
+    EXPECT_TRUE(again.meshes[k].vertices.isApprox(scene.meshes[k].vertices, 1e-7));
+  }
+}
+
+TEST(SceneFracture, AssignedBodiesBreakIntoClosedFragmentsThatKeepTheirVolume) {
+  const fs::path dir = test::fresh_temp_dir("scene_fracture");
+  const ImportedScene scene = small_street(dir);
+  std::atomic<int> meshed{0};
+  SceneFractureOptions options = tile_options();
+  options.mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
+    ++meshed;
+    return tetrahedralize(surface, o);
+  };
+  options.threads = 2;
+  const SceneFracture run = fracture_scene(scene, options);
+  // Lazy: the curb and the road have no material and never reach the mesher.
+  EXPECT_EQ(meshed.load(), 3);
+
+  std::set<int> fragment_counts;
+  std::set<double> first_volumes;
+  for (std::size_t b = 0; b < run.bodies.size(); ++b) {
+    const SceneBodyReport& r = run.reports[b];
+    const bool slab = r.path.find("/slab_") != std::string::npos;
+    ASSERT_EQ(r.status, slab ? SceneBodyReport::Status::Fractured : SceneBodyReport::Status::Unassigned) << r.path << r.reason;
+    if (!slab) {
+      EXPECT_FALSE(run.results[b]);
+      continue;
+    }
+    const BodyFracture& f = run.results[b]->fracture;
+    EXPECT_GT(f.fragments.size(), 3u) << r.path;
+    double volume = 0.0;
+    for (const FragmentMesh& m : f.fragments) {
+      EXPECT_TRUE(test::closed_surface(m.vertices, m.triangles)) << r.path;
+      volume += m.volume;
+    }
+    // The body's volume, 0.6 × 0.05 × 0.6 m: the fragments partition the tets exactly, so only
+    // round-off and the moved vertices' bound (fragment_mesh.hpp, ≤ 1e-6 of the size) remain.
+    EXPECT_NEAR(volume, 0.6 * 0.05 * 0.6, 1e-6 * 0.018) << r.path;
+    fragment_counts.insert(static_cast<int>(f.fragments.size()));
+    first_volumes.insert(f.fragments.front().volume);
+  }
+  // Similar, not identical: each slab its own pattern.
+  EXPECT_EQ(first_volumes.size(), 3u);
+
+  // The export: each slab's node keeps its transform and holds its fragments; the curb and the
+  // road are as they were.
+  write_scene(dir / "broken.glb", scene_export(scene, run));
+  const ImportedScene broken = import_scene(dir / "broken.glb");
+  const auto before = world_by_path(scene), after = world_by_path(broken);
+  for (const char* untouched : {"/street/curb", "/street/road"}) {
+    ASSERT_TRUE(after.count(untouched)) << untouched;
+    EXPECT_LT((after.at(untouched) - before.at(untouched)).cwiseAbs().maxCoeff(), 1e-6);
+  }
+  std::map<std::string, double> volume_by_slab;
+  for (const SceneBody& b : scene_bodies(broken)) {
+    const std::size_t slash = b.path.rfind("/fragment_");
+    if (slash == std::string::npos) continue;
+    const SceneBodyCheck check = check_scene_body(broken, b);
+    ASSERT_TRUE(check.fracturable) << b.path << ": " << check.reason << " " << ::testing::PrintToString(check.repairs);
+    volume_by_slab[b.path.substr(0, slash)] += check.volume;
+  }
+  ASSERT_EQ(volume_by_slab.size(), 3u);
+  // Through float32 positions: 1e-5 of the volume.
+  for (const auto& [slab, volume] : volume_by_slab) EXPECT_NEAR(volume, 0.018, 0.018 * 1e-5) << slab;
+}
+
+TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) {
+  const fs::path dir = test::fresh_temp_dir("scene_determinism");
+  const ImportedScene scene = small_street(dir);
+  SceneFractureOptions one = tile_options(800);
+  one.threads = 1;
+  SceneFractureOptions two = one;
+  two.threads = 2;
+  const std::string a = encode_scene(scene_export(scene, fracture_scene(scene, one)), SceneFormat::Glb);
+  const std::string b = encode_scene(scene_export(scene, fracture_scene(scene, two)), SceneFormat::Glb);
+  EXPECT_TRUE(a == b);
+
+  // Slices 1/2 and 2/2 fracture disjoint bodies that together are the unsliced run's.
+  const SceneFracture whole = fracture_scene(scene, one);
+  std::vector<int> covered(whole.bodies.size(), 0);
+  for (int k = 1; k <= 2; ++k) {
+    SceneFractureOptions slice = one;
+    slice.slice = k;
+    slice.slices = 2;
+    const SceneFracture part = fracture_scene(scene, slice);
+    for (std::size_t i = 0; i < part.bodies.size(); ++i) {
+      if (!part.results[i]) continue;
+      ++covered[i];
+      ASSERT_TRUE(whole.results[i]);
+      ASSERT_EQ(part.results[i]->fracture.fragments.size(), whole.results[i]->fracture.fragments.size());
+      EXPECT_TRUE(part.results[i]->fracture.fragments.front().vertices == whole.results[i]->fracture.fragments.front().vertices);
+    }
+  }
+  for (std::size_t i = 0; i < whole.bodies.size(); ++i) EXPECT_EQ(covered[i], whole.results[i] ? 1 : 0) << whole.bodies[i].path;
+  SceneFractureOptions bad = one;
+  bad.slice = 3;
+  bad.slices = 2;
+  EXPECT_THROW(fracture_scene(scene, bad), InvalidInput);
+}
+
+TEST(SceneFracture, BadAssignmentsAreNamedAndTheRestStillRuns) {
+  const fs::path dir = test::fresh_temp_dir("scene_bad_assignments");
+  const ImportedScene scene = small_street(dir);
+  std::atomic<int> meshed{0};
+  SceneFractureOptions options;
+  options.target_tets = 800;
+  options.assignments.by_material["tiles"] = "ceramic-tile";             // no such scene material
+  options.assignments.by_material["asphalt"] = "no-such-material";        // no such fracture material
+  options.assignments.by_path["/street/curb"] = (dir / "missing.json").string();  // no such file
+  options.assignments.by_path["/street/sidewalk/slab_02"] = "ceramic-tile";
+  options.assignments.by_path["/street/lamp"] = "glass";                  // no such node
+  options.mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
+    ++meshed;
+    return tetrahedralize(surface, o);
+  };
+  const SceneFracture run = fracture_scene(scene, options);
+  ASSERT_EQ(run.warnings.size(), 2u);
+  EXPECT_NE(run.warnings[0].find("no material tiles"), std::string::npos) << run.warnings[0];
+  EXPECT_NE(run.warnings[0].find("concrete"), std::string::npos) << "lists the scene's materials: " << run.warnings[0];
+  EXPECT_NE(run.warnings[1].find("/street/lamp"), std::string::npos) << run.warnings[1];
+  std::map<std::string, SceneBodyReport> by_path;
+  for (const SceneBodyReport& r : run.reports) by_path[r.path] = r;
+  EXPECT_EQ(by_path["/street/road"].status, SceneBodyReport::Status::Skipped);
+  EXPECT_NE(by_path["/street/road"].reason.find("no-such-material"), std::string::npos) << by_path["/street/road"].reason;
+  EXPECT_EQ(by_path["/street/curb"].status, SceneBodyReport::Status::Skipped);
+  EXPECT_NE(by_path["/street/curb"].reason.find("missing.json"), std::string::npos) << by_path["/street/curb"].reason;
+  EXPECT_EQ(by_path["/street/sidewalk/slab_02"].status, SceneBodyReport::Status::Fractured);
+  EXPECT_EQ(by_path["/street/sidewalk/slab_01"].status, SceneBodyReport::Status::Unassigned);
+  EXPECT_EQ(meshed.load(), 1);  // skipped bodies are not meshed either
+  // The export still holds every body.
+  const ExportScene out = scene_export(scene, run);
+  EXPECT_NO_THROW(encode_scene(out, SceneFormat::Glb));
+}
+
+TEST(SceneFracture, AnOpenBodyIsSkippedWithItsReason) {
+  const fs::path dir = test::fresh_temp_dir("scene_open_body");
+  ExportScene scene = demo_street([] {
+    DemoStreetOptions o;
+    o.slabs_along = 2;
+    o.slabs_across = 1;
+    o.curb_and_road = false;
+    return o;
+  }());
+  // Slab 2 loses its top: an open mesh.
+  ExportPart& slab = scene.parts.back();
+  slab.triangles.conservativeResize(slab.triangles.rows() - 2, 3);
+  slab.triangle_material.resize(slab.triangle_material.size() - 2);
+  write_scene(dir / "open.glb", scene);
+  const ImportedScene read = import_scene(dir / "open.glb");
+  SceneFractureOptions options = tile_options(800);
+  const SceneFracture run = fracture_scene(read, options);
+  ASSERT_EQ(run.reports.size(), 2u);
+  EXPECT_EQ(run.reports[0].status, SceneBodyReport::Status::Fractured);
+  EXPECT_EQ(run.reports[1].status, SceneBodyReport::Status::Skipped);
+  EXPECT_NE(run.reports[1].reason.find("open"), std::string::npos) << run.reports[1].reason;
+}
+
+}  // namespace
+}  // namespace fissure
