@@ -4,6 +4,8 @@
 // fissure scene fracture SCENE --assign NAME=MATERIAL… [--seed S] [--age A] [--up AXIS] [--tets N]
 //   [--bodies K/N] [--strict] [--report R.json] -o OUT: every assigned body fractured, the scene
 //   written back with the fragments as child nodes (scene/scene_fracture.hpp).
+// fissure scene merge SLICE.glb… -o OUT: the slices of a --bodies K/N run joined into the file an
+//   unsliced run writes (scene/scene_merge.hpp).
 // fissure scene demo street|bathroom -o OUT: the demo scenes of assets/scenes/ (scene/demo_scenes.hpp).
 
 #include "cli_common.hpp"
@@ -18,11 +20,13 @@
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
 #include "fissure/fracture/fracture_scenario.hpp"
+#include "fissure/io/gltf_reader.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 #include "fissure/scene/demo_scenes.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_fracture.hpp"
+#include "fissure/scene/scene_merge.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -288,6 +292,19 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   return kExitOk;
 }
 
+struct SceneMergeArgs {
+  std::vector<std::string> slices;
+  std::string output;
+};
+
+int run_scene_merge(const SceneMergeArgs& args) {
+  check_scene_output_path(args.output);
+  std::vector<ExportScene> slices;
+  for (const std::string& s : args.slices) slices.push_back(read_fissure_gltf(s));
+  write_scene(args.output, merge_scene_slices(slices, args.slices));
+  return kExitOk;
+}
+
 struct SceneDemoArgs {
   std::string which;
   std::string output;
@@ -343,6 +360,12 @@ void register_scene(CLI::App& app, Action& action) {
   fracture->add_option("-o,--output", fr->output, "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply")->required();
   fracture->add_flag("-q,--quiet", fr->quiet, "Print nothing on success, no progress");
   fracture->callback([&action, fr] { action = [fr] { return run_scene_fracture(*fr); }; });
+
+  auto merge_args = std::make_shared<SceneMergeArgs>();
+  auto* merge = cmd->add_subcommand("merge", "Join the slices of a fissure scene fracture --bodies K/N run into the file an unsliced run writes");
+  merge->add_option("SLICES", merge_args->slices, "The slices' .glb or .gltf files, in any order")->required();
+  merge->add_option("-o,--output", merge_args->output, "The merged scene: .glb, .gltf, .obj or .ply")->required();
+  merge->callback([&action, merge_args] { action = [merge_args] { return run_scene_merge(*merge_args); }; });
 
   auto demo_args = std::make_shared<SceneDemoArgs>();
   auto* demo = cmd->add_subcommand("demo", "Write a demo scene (street or bathroom), as in assets/scenes/");

@@ -150,7 +150,7 @@ std::string encode_gltf(const ExportScene& scene, bool binary) {
   if (!binary) buffer_json["uri"] = "data:application/octet-stream;base64," + base64(bytes);
   nlohmann::ordered_json gltf = {{"asset", {{"version", "2.0"}, {"generator", "Fissure"}}},
                                  {"scene", 0},
-                                 {"scenes", {{{"nodes", root_nodes}}}},
+                                 {"scenes", {{{"nodes", root_nodes}, {"extras", nlohmann::ordered_json::parse(scene.extras_json)}}}},
                                  {"nodes", nodes}};
   if (!meshes.empty()) gltf["meshes"] = meshes;
   if (!materials.empty()) gltf["materials"] = materials;

@@ -17,6 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 
 void check_scene(const ExportScene& scene) {
+  const auto scene_extras = nlohmann::json::parse(scene.extras_json, nullptr, false);
+  if (scene_extras.is_discarded() || !scene_extras.is_object()) throw InvalidInput("the scene's extras are not a JSON object");
   const int materials = static_cast<int>(scene.materials.size());
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ExportPart& part = scene.parts[p];

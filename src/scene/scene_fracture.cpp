@@ -5,6 +5,7 @@
 #include "fissure/base/parallel.hpp"
 #include "fissure/scene/fragment_export.hpp"
 #include "fissure/scene/scene_body_check.hpp"
+#include "fissure/scene/scene_merge.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -52,6 +53,26 @@ std::vector<std::string> unmatched_assignments(const ImportedScene& scene, const
   return warnings;
 }
 
+// The run's identity (SceneFracture::run): everything that decides its output but the slice.
+std::string run_identity(const ImportedScene& scene, const SceneFractureOptions& o) {
+  ContentHasher h;
+  h.add("fissure scene run v1").add(scene.up);
+  for (const SceneNode& n : scene.nodes) {
+    h.add(n.path).add(static_cast<std::int64_t>(n.parent)).add(n.local);
+    for (int m : n.meshes) h.add(static_cast<std::int64_t>(m));
+  }
+  for (const SceneMesh& m : scene.meshes) h.add(m.name).add(m.vertices).add(m.triangles).add(m.uvs).add(static_cast<std::int64_t>(m.material));
+  for (const SceneMaterial& m : scene.materials) {
+    h.add(m.name).add(m.colour);
+    for (const std::string& t : m.textures) h.add(t);
+  }
+  for (const auto& [k, v] : o.assignments.by_material) h.add("material").add(k).add(v);
+  for (const auto& [k, v] : o.assignments.by_path) h.add("path").add(k).add(v);
+  h.add(static_cast<std::int64_t>(o.seed)).add(o.age ? *o.age : -1.0).add(static_cast<std::int64_t>(o.target_tets));
+  h.add(o.up ? Eigen::Vector3d(*o.up) : Eigen::Vector3d::Zero());
+  return h.finish().hex();
+}
+
 }  // namespace
 
 const char* status_name(SceneBodyReport::Status status) {
@@ -74,6 +95,9 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
                        ": K must be in 1..N");
   }
   SceneFracture out;
+  out.slice = options.slice;
+  out.slices = options.slices;
+  out.run = run_identity(scene, options);
   out.bodies = scene_bodies(scene);
   out.warnings = unmatched_assignments(scene, out.bodies, options.assignments);
   out.reports.resize(out.bodies.size());
@@ -174,13 +198,22 @@ ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fractu
     return name;
   };
 
-  auto default_index = [&] {
-    if (default_material < 0) {
-      default_material = static_cast<int>(out.materials.size());
-      out.materials.push_back({unique_name("default"), Eigen::Vector3d::Constant(0.8), {}});
-    }
-    return default_material;
-  };
+  // Decided by the scene and the assignments alone, so that every slice lists the same materials.
+  bool any_unmaterialled = false, any_assigned = false;
+  for (const SceneBody& body : fracture.bodies)
+    for (int m : body.meshes) any_unmaterialled = any_unmaterialled || scene.meshes[static_cast<std::size_t>(m)].material < 0;
+  for (const SceneBodyReport& r : fracture.reports) any_assigned = any_assigned || r.status != SceneBodyReport::Status::Unassigned;
+  if (any_unmaterialled) {
+    default_material = static_cast<int>(out.materials.size());
+    out.materials.push_back({unique_name("default"), Eigen::Vector3d::Constant(0.8), {}});
+  }
+  if (any_assigned) {
+    crack_material = static_cast<int>(out.materials.size());
+    // fragment_scene's crack colour (scene/fragment_export.hpp), under a name no scene material has.
+    out.materials.push_back({unique_name("crack"), fragment_scene({}, {}, 1.0).materials.back().colour, {}});
+  }
+  auto default_index = [&] { return default_material; };
+  out.extras_json = scene_slice_extras(fracture.run, fracture.slice, fracture.slices);
 
   std::vector<int> body_of_node(scene.nodes.size(), -1);
   for (std::size_t b = 0; b < fracture.bodies.size(); ++b)
@@ -243,12 +276,6 @@ ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fractu
                                              {"tets", broken.tets}}}};
     out.parts[static_cast<std::size_t>(node_part)].extras_json = extras.dump();
     const ExportScene fragments = fragment_scene(broken.fragments, broken.result.cracks, broken.params.density, result->appearance);
-    if (crack_material < 0) {
-      crack_material = static_cast<int>(out.materials.size());
-      ExportMaterial crack = fragments.materials.back();
-      crack.name = unique_name("crack");
-      out.materials.push_back(crack);
-    }
     // fragment_scene's materials are the appearance's, then the crack's.
     std::vector<int> material_map;
     for (int m : result->scene_materials) material_map.push_back(m >= 0 ? m : default_index());

@@ -44,7 +44,7 @@ ExportPart box(const std::string& name, const Eigen::Vector3d& size, const Eigen
 TEST(SceneCli, InfoListsBodiesAndWhichCanBeFractured) {
   const fs::path dir = test::fresh_temp_dir("scene-cli-info");
   ExportScene scene;
-  scene.materials = {{"concrete", Eigen::Vector3d(0.5, 0.5, 0.5)}};
+  scene.materials = {{"concrete", Eigen::Vector3d(0.5, 0.5, 0.5), {}}};
   scene.parts = {box("slab", {2.0, 1.0, 0.1}, {0, 0, 0}, false), box("crate", {1, 1, 1}, {5, 0, 0}, true)};
   write_scene(dir / "yard.glb", scene);
   const auto r = test::run_command(fissure() + " scene info -q " + (dir / "yard.glb").string());
@@ -74,6 +74,70 @@ TEST(SceneCli, InfoListsBodiesAndWhichCanBeFractured) {
   EXPECT_NEAR((*slab)["size"][2].get<double>(), 0.1, 1e-6);
   EXPECT_FALSE((*crate)["fracturable"].get<bool>());
   EXPECT_NE((*crate)["reason"].get<std::string>().find("open"), std::string::npos) << crate->dump();
+}
+
+// The street demo as a batch user runs it: fracture every slab, a report per body, plain
+// progress lines in a log; the same run in two --bodies slices merged is the same file.
+TEST(SceneCli, FractureTheStreetInSlicesAndMergeThem) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-fracture");
+  const std::string street = (dir / "street.glb").string();
+  auto r = test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // ceramic-tile on the slabs: tens of fragments each at 800 tets, in a second.
+  const std::string run = fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 --seed 5";
+  r = test::run_command(run + " --report " + (dir / "report.json").string() + " -o " + (dir / "whole.glb").string() + " 2>&1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("fissure scene fracture: 2/2 /street/sidewalk/slab_"), std::string::npos) << "plain lines off a terminal: " << r.output;
+  EXPECT_NE(r.output.find("2 bodies fractured into"), std::string::npos) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "report.json"));
+  int fractured = 0;
+  for (const auto& b : report["bodies"]) {
+    if (b["status"] != "fractured") continue;
+    ++fractured;
+    EXPECT_GT(b["fragments"].get<int>(), 1) << b.dump();
+    EXPECT_EQ(b["material"], "ceramic-tile");
+  }
+  EXPECT_EQ(fractured, 2) << report.dump(2);
+
+  for (const char* k : {"1", "2"}) {
+    r = test::run_command(run + " -q --bodies " + k + "/2 -o " + (dir / (std::string("slice") + k + ".glb")).string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  r = test::run_command(fissure() + " scene merge " + (dir / "slice2.glb").string() + " " + (dir / "slice1.glb").string() +
+                        " -o " + (dir / "merged.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(read_file(dir / "merged.glb") == read_file(dir / "whole.glb")) << "merged slices differ from the unsliced run";
+
+  // A slice missing, a file that is not a slice: one line, nothing written.
+  r = test::run_command(fissure() + " scene merge " + (dir / "slice1.glb").string() + " -o " + (dir / "m.glb").string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("slice 2/2 is missing"), std::string::npos) << r.output;
+  r = test::run_command(fissure() + " scene merge " + street + " " + (dir / "slice1.glb").string() + " -o " + (dir / "m.glb").string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find(street + ": not a slice"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "m.glb"));
+}
+
+// Wrong assignments: a material name no library has skips its bodies with the reason (exit 0,
+// a warning line each) unless --strict; an assignment to a material the scene lacks is named.
+TEST(SceneCli, BadAssignmentsAreNamed) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-assign");
+  const std::string street = (dir / "street.glb").string();
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 1 --rows 1 -o " + street).exit_code, 0);
+  auto r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=no-such-material -o " +
+                             (dir / "out.glb").string() + " 2>&1");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("skipped"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("no-such-material"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "out.glb"));
+  r = test::run_command(fissure() + " scene fracture " + street + " --strict --assign tiles=ceramic-tile -o " +
+                        (dir / "strict.glb").string() + " 2>&1");
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("the scene has no material tiles"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "strict.glb"));
+  r = test::run_command(fissure() + " scene fracture " + street + " -o " + (dir / "none.glb").string() + " 2>&1");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("nothing to fracture"), std::string::npos) << r.output;
 }
 
 TEST(SceneCli, WrongFilesGetOneLine) {

@@ -11,6 +11,8 @@
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/rng.hpp"
+#include "fissure/io/gltf_reader.hpp"
+#include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 #include "fissure/io/surface_import.hpp"
 
@@ -263,6 +265,54 @@ TEST(ImportFuzz, FissureReadersNeverCrash) {
       {"ASCII STL", test::to_stl(triangles), false, dir / "f.stl", dir / "f.stl"},
       {"binary STL", test::to_stl_binary(triangles), true, dir / "b.stl", dir / "b.stl"}};
   fuzz(corpora, 1000, 2026);
+}
+
+// read_fissure_gltf (gltf_reader.hpp), the reader of `fissure scene merge`, on corrupted GLB and
+// glTF files Fissure wrote: read (and then writable again: every index and value it returns was
+// checked) or refused naming the file; never a crash, a hang or an allocation past the file.
+TEST(ImportFuzz, FissureGltfReaderNeverCrashes) {
+  ExportScene scene;
+  scene.materials = {{"stone", Eigen::Vector3d(0.5, 0.5, 0.5), "stone.png"}, {"crack", Eigen::Vector3d(0.3, 0.3, 0.3), {}}};
+  const SurfaceMesh prism = test::l_prism();
+  ExportPart group;
+  group.name = "group";
+  group.linear = 2.0 * Eigen::Matrix3d::Identity();
+  group.extras_json = R"({"fissure":{"fragments":1}})";
+  ExportPart part;
+  part.name = "fragment_000";
+  part.parent = 0;
+  part.vertices = prism.vertices;
+  part.uvs = prism.vertices.leftCols(2);
+  part.triangles = prism.faces;
+  for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) part.triangle_material.push_back(t % 2);
+  scene.parts = {group, part};
+  scene.extras_json = R"({"fissure":{"slice":[1,2]}})";
+  const std::size_t rss_before = peak_rss_bytes();
+  double slowest = 0.0;
+  for (const SceneFormat format : {SceneFormat::Glb, SceneFormat::Gltf}) {
+    const bool binary = format == SceneFormat::Glb;
+    const std::string original = encode_scene(scene, format);
+    ASSERT_EQ(decode_fissure_gltf(original, "x").parts.size(), 2u);
+    Rng rng = Rng::derive(2028, binary ? "glb" : "gltf");
+    int read = 0, refused = 0;
+    for (int t = 0; t < 1000; ++t) {
+      const std::string bytes = corrupt(original, rng, binary);
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        const ExportScene back = decode_fissure_gltf(bytes, "fuzz.glb");
+        EXPECT_NO_THROW(encode_scene(back, format));
+        ++read;
+      } catch (const InvalidInput& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("fuzz.glb: ", 0), 0u) << e.what();
+        ++refused;
+      }
+      slowest = std::max(slowest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::printf("Fissure %s: 1000 corrupted files: %d refused with a message, %d still read\n", binary ? "GLB" : "glTF", refused, read);
+    EXPECT_GT(refused, 250);
+  }
+  EXPECT_LT(slowest, 2.0);  // a few kB each: far below a millisecond
+  EXPECT_LT(peak_rss_bytes() - rss_before, (std::size_t{256} << 20) + kSanitizerQuarantine);
 }
 
 TEST(ImportFuzz, AssimpFormatsNeverCrash) {

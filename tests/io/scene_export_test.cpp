@@ -2,6 +2,7 @@
 // engines and converters use: one node per part with its name and origin, closed parts, both
 // materials, UVs, glTF extras; the same bytes every time; bad scenes and paths refused.
 #include "fissure/io/scene_export.hpp"
+#include "fissure/io/gltf_reader.hpp"
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
@@ -49,7 +50,7 @@ ExportPart cube(const std::string& name, const Eigen::Vector3d& origin) {
 
 ExportScene two_cubes() {
   ExportScene s;
-  s.materials = {{"surface", Eigen::Vector3d(0.6, 0.6, 0.6)}, {"crack", Eigen::Vector3d(0.3, 0.3, 0.3)}};
+  s.materials = {{"surface", Eigen::Vector3d(0.6, 0.6, 0.6), {}}, {"crack", Eigen::Vector3d(0.3, 0.3, 0.3), {}}};
   s.parts = {cube("fragment_000", Eigen::Vector3d(0, 0, 0)), cube("fragment_001", Eigen::Vector3d(3, 0, 0.5))};
   return s;
 }
@@ -128,7 +129,9 @@ TEST_F(SceneExport, GlbGltfAndObjReadBackByAssimpAsOneClosedObjectPerPart) {
       EXPECT_EQ(materials, (std::vector<std::string>{"crack", "surface"}));
     }
     // glTF keeps the origin as the node's translation; OBJ has none (world positions).
-    if (std::string(name) != "cubes.obj") EXPECT_TRUE(nodes.at("fragment_001").translation.isApprox(Eigen::Vector3d(3, 0, 0.5)));
+    if (std::string(name) != "cubes.obj") {
+      EXPECT_TRUE(nodes.at("fragment_001").translation.isApprox(Eigen::Vector3d(3, 0, 0.5)));
+    }
   }
   EXPECT_TRUE(fs::exists(dir / "cubes.mtl"));
   EXPECT_NE(read_file(dir / "cubes.obj").find("mtllib cubes.mtl"), std::string::npos);
@@ -195,6 +198,76 @@ TEST_F(SceneExport, NamesWithBlanksStayOneWordInObj) {
 TEST_F(SceneExport, SameSceneSameBytes) {
   for (SceneFormat f : {SceneFormat::Glb, SceneFormat::Gltf, SceneFormat::Obj, SceneFormat::Ply})
     EXPECT_EQ(encode_scene(two_cubes(), f, "x.mtl"), encode_scene(two_cubes(), f, "x.mtl"));
+}
+
+// A scene with what scene_export (scene/scene_fracture.hpp) writes: a rotated and scaled group,
+// parts under it, one without UVs, a textured material, extras on nodes and on the scene.
+ExportScene rich_scene() {
+  ExportScene s = two_cubes();
+  s.materials[0].texture = "textures/stone.png";
+  ExportPart group;
+  group.name = "group";
+  group.linear = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix() * 1.7;
+  group.translation = Eigen::Vector3d(0.1, -2.5, 1e-7);
+  s.parts.insert(s.parts.begin(), group);
+  for (std::size_t k = 1; k < s.parts.size(); ++k) s.parts[k].parent = 0;
+  ExportPart bare = cube("no_uvs", Eigen::Vector3d(-1, 0, 0));
+  bare.uvs.resize(0, 2);
+  bare.parent = 2;
+  bare.vertices *= 1.0 / 3.0;  // values float32 rounds
+  s.parts.push_back(bare);
+  s.extras_json = R"({"fissure":{"slice":[1,1],"run":"abc"}})";
+  return s;
+}
+
+// read_fissure_gltf gives back the scene it was written from: writing it again gives the same
+// bytes, which is what `fissure scene merge` relies on for byte-identical slices.
+TEST_F(SceneExport, FissureGltfReadsBackToTheSameBytes) {
+  const ExportScene s = rich_scene();
+  for (SceneFormat f : {SceneFormat::Glb, SceneFormat::Gltf}) {
+    const std::string bytes = encode_scene(s, f);
+    const ExportScene back = decode_fissure_gltf(bytes, "x");
+    ASSERT_EQ(back.parts.size(), s.parts.size());
+    for (std::size_t k = 0; k < s.parts.size(); ++k) {
+      const ExportPart &a = s.parts[k], &b = back.parts[k];
+      EXPECT_EQ(b.name, a.name);
+      EXPECT_EQ(b.parent, a.parent);
+      EXPECT_EQ(b.linear, a.linear) << "doubles in JSON read back exactly";
+      EXPECT_EQ(b.translation, a.translation);
+      EXPECT_EQ(b.uvs.rows(), a.uvs.rows()) << a.name;
+      EXPECT_EQ(b.triangles.rows(), a.triangles.rows());
+      // float32 in the buffer: half an ulp of 1 relative.
+      if (a.vertices.rows() > 0) {
+        EXPECT_LT((b.vertices - a.vertices).cwiseAbs().maxCoeff(), 6e-8) << a.name;
+      }
+      EXPECT_EQ(nlohmann::json::parse(b.extras_json), nlohmann::json::parse(a.extras_json));
+    }
+    EXPECT_EQ(back.materials.size(), 2u);
+    EXPECT_EQ(back.materials[0].texture, "textures/stone.png");
+    EXPECT_EQ(back.materials[1].colour, s.materials[1].colour);
+    EXPECT_EQ(nlohmann::json::parse(back.extras_json), nlohmann::json::parse(s.extras_json));
+    EXPECT_EQ(encode_scene(back, f), bytes) << "re-encoded differs";
+  }
+}
+
+TEST_F(SceneExport, FissureGltfReaderRefusesWhatFissureDidNotWrite) {
+  auto refused = [](const std::string& bytes, const std::string& expected) {
+    try {
+      decode_fissure_gltf(bytes, "in.glb");
+      ADD_FAILURE() << "read: " << expected;
+    } catch (const InvalidInput& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("in.glb: ", 0), 0u) << e.what();
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
+  };
+  refused(R"({"asset":{"version":"2.0","generator":"Khronos glTF Blender I/O"}})", "not written by Fissure");
+  refused("{", "does not parse");
+  std::string glb = encode_scene(two_cubes(), SceneFormat::Glb);
+  refused(glb.substr(0, glb.size() - 4), "header gives");
+  std::string text = encode_scene(two_cubes(), SceneFormat::Gltf);
+  const std::size_t at = text.find("\"bufferView\": 1");
+  ASSERT_NE(at, std::string::npos);
+  refused(text.replace(at, 15, "\"bufferView\": 99"), "bufferViews 99 does not exist");
 }
 
 TEST_F(SceneExport, BadScenesAndPathsAreRefusedNamingTheCulprit) {

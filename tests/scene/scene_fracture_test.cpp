@@ -8,12 +8,14 @@
 //    result does not depend on the thread count;
 //  - bad assignments are named and the rest still runs.
 #include "fissure/base/error.hpp"
+#include "fissure/io/gltf_reader.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 #include "fissure/mesh/surface_repair.hpp"
 #include "fissure/scene/demo_scenes.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_fracture.hpp"
+#include "fissure/scene/scene_merge.hpp"
 
 #include "../support/closed_surface.hpp"
 #include "test_support.hpp"
@@ -185,13 +187,18 @@ TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) 
   EXPECT_TRUE(a == b);
 
   // Slices 1/2 and 2/2 fracture disjoint bodies that together are the unsliced run's.
+  // Merged (scene_merge.hpp) from their files, in either order, they are its bytes.
   const SceneFracture whole = fracture_scene(scene, one);
   std::vector<int> covered(whole.bodies.size(), 0);
+  std::vector<ExportScene> slice_files;
   for (int k = 1; k <= 2; ++k) {
     SceneFractureOptions slice = one;
     slice.slice = k;
     slice.slices = 2;
     const SceneFracture part = fracture_scene(scene, slice);
+    const std::string bytes = encode_scene(scene_export(scene, part), SceneFormat::Glb);
+    EXPECT_FALSE(bytes == a) << "slice " << k << " fractures only its share";
+    slice_files.insert(slice_files.begin(), decode_fissure_gltf(bytes, "slice"));
     for (std::size_t i = 0; i < part.bodies.size(); ++i) {
       if (!part.results[i]) continue;
       ++covered[i];
@@ -201,6 +208,14 @@ TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) 
     }
   }
   for (std::size_t i = 0; i < whole.bodies.size(); ++i) EXPECT_EQ(covered[i], whole.results[i] ? 1 : 0) << whole.bodies[i].path;
+  EXPECT_TRUE(encode_scene(merge_scene_slices(slice_files, {"2.glb", "1.glb"}), SceneFormat::Glb) == a);
+  EXPECT_THROW(merge_scene_slices({slice_files[0]}, {"2.glb"}), InvalidInput) << "slice 1 missing";
+  SceneFractureOptions other_seed = one;
+  other_seed.seed = 99;
+  other_seed.slice = 1;
+  other_seed.slices = 2;
+  const ExportScene stranger = decode_fissure_gltf(encode_scene(scene_export(scene, fracture_scene(scene, other_seed)), SceneFormat::Glb), "x");
+  EXPECT_THROW(merge_scene_slices({slice_files[0], stranger}, {"2.glb", "x.glb"}), InvalidInput) << "another run";
   SceneFractureOptions bad = one;
   bad.slice = 3;
   bad.slices = 2;

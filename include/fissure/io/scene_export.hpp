@@ -10,7 +10,8 @@
 ///   scales, its matrix, its extras object); one mesh per
 ///   part with one primitive per material it uses, the primitives sharing one vertex array, so
 ///   a closed part stays one closed surface; positions and UVs as float32, indices uint32; no
-///   normals (clients shade flat, which a fracture surface is).
+///   normals (clients shade flat, which a fracture surface is); the scene's extras object.
+///   read_fissure_gltf() (gltf_reader.hpp) reads such a file back exactly.
 /// - OBJ: one `o NAME` per part with triangles, positions in the scene's frame, `vt` UVs, `usemtl` switching per material
 ///   inside the object, and `mtllib` naming NAME.mtl, written beside it. Extras become comments.
 /// - PLY: one binary little-endian mesh of positions in the scene's frame, with per-vertex `part` (the part's
@@ -51,6 +52,7 @@ struct ExportMaterial {
 struct ExportScene {
   std::vector<ExportMaterial> materials;
   std::vector<ExportPart> parts;
+  std::string extras_json = "{}";  ///< a JSON object: glTF scene extras (other formats drop it)
 };
 
 /// Part `k`'s frame → the scene's frame: the product of its ancestors' transforms and its own.

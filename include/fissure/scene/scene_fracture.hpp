@@ -78,6 +78,10 @@ struct SceneFracture {
   /// Assignments that match nothing in the scene ("--assign tiles=…: the scene has no material
   /// tiles (it has: a, b)"); the run goes on without them.
   std::vector<std::string> warnings;
+  int slice = 1, slices = 1;              ///< the slice run (SceneFractureOptions)
+  /// What identifies the run across its slices: a hash of the scene's content (nodes, meshes,
+  /// materials) and of every option but the slice. scene_merge.hpp joins only slices that share it.
+  std::string run;
 };
 
 /// The body's own seed: a hash of (project seed, body path).
@@ -94,7 +98,10 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
 /// input, and maps other than the base colour, are not carried). An untouched body is its node's
 /// geometry, one primitive per material. The root node an importer adds above a glTF's scene
 /// nodes is left out, so an export imports back as it was. Meshes shared by several nodes are
-/// written once per node.
+/// written once per node. Materials: the scene's, then `default` when a mesh has none, then the
+/// crack material when any body is assigned (fractured or not, in this slice or another), so
+/// every slice of a run has the same list. The scene's extras name the run and the slice
+/// ({"fissure": {"slice": [K, N], "run": …}}), which `fissure scene merge` checks.
 ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fracture);
 
 }  // namespace fissure
