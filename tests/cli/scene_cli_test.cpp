@@ -140,6 +140,19 @@ TEST(SceneCli, BadAssignmentsAreNamed) {
   EXPECT_NE(r.output.find("nothing to fracture"), std::string::npos) << r.output;
 }
 
+// assets/scenes/ holds what `fissure scene demo` writes (scripts/make-demo-scenes.sh): a change
+// to the demo code without regenerating them fails here.
+TEST(SceneCli, TheBundledDemoScenesAreWhatTheCodeWrites) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-demo");
+  for (const std::string which : {"street", "bathroom"}) {
+    const fs::path written = dir / (which + ".glb");
+    const auto r = test::run_command(fissure() + " scene demo " + which + " -o " + written.string());
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(read_file(written) == read_file(test::source_dir() / "assets" / "scenes" / (which + ".glb")))
+        << which << ": run scripts/make-demo-scenes.sh";
+  }
+}
+
 TEST(SceneCli, WrongFilesGetOneLine) {
   const fs::path dir = test::fresh_temp_dir("scene-cli-bad");
   const auto missing = test::run_command(fissure() + " scene info -q " + (dir / "none.glb").string());
