@@ -75,6 +75,15 @@ SECTION_NOTES = {
                        "its bytes in memory, F = 0 GLB, 1 glTF (base64 buffers), 2 OBJ (text), 3 PLY (`MB`: the "
                        "size). `BM_Race` rows are the race's (`bench_race_cell_fracture`, run on 2 threads by "
                        "scripts/race-cell-fracture.sh); here on one.",
+    "bench_scene": "Whole scenes (issue 13), one thread (bench.sh; bodies run in parallel on more): "
+                   "`Street/slabs:S`: the street demo (S slabs in two rows, a curb, a road; S = 24 is "
+                   "assets/scenes/street.glb) read from its GLB, every slab and the curb fractured with the "
+                   "bundled concrete at age 12 (scripts/demo.sh), the road untouched, the scene exported and "
+                   "encoded as GLB in memory, all cold (no cache yet). `per_body_s`: the time per fractured "
+                   "body (target ≤ 1 s on 2 cores); `meshing`, `preparation`, `simulation`, `fragments`: shares "
+                   "of the bodies' summed seconds; `export_s`: scene_export + GLB. `OneBodyOf/bodies:B`: one "
+                   "slab assigned by its node path in a street of B bodies, against B = 1 (target: within 10 %; "
+                   "the other bodies are never meshed, so they cost only reading and export).",
     "bench_race_cell_fracture": "The race (issue 11), by scripts/race-cell-fracture.sh, both sides in one run on this "
                                 "machine: Blender 3.4's Cell Fracture add-on (Debian's `blender`, all cores, N seeded "
                                 "random points in the 1 × 1 × 0.05 m tile, margin 0; time = the operator; `closed` = "
