@@ -51,5 +51,7 @@ function(fissure_add_test name)
   gtest_discover_tests(${name}
     WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
     PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT}
+      # Caches (tet meshes, modal bases) go to the build tree, never to the user's home.
+      ENVIRONMENT "FISSURE_CACHE_DIR=${PROJECT_BINARY_DIR}/test-cache"
     DISCOVERY_TIMEOUT 60)
 endfunction()

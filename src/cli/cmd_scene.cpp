@@ -2,7 +2,7 @@
 // materials, sizes and whether each can be fractured (closed or safely repaired), and the
 // materials' texture references, missing ones named.
 // fissure scene fracture SCENE --assign NAME=MATERIAL… [--seed S] [--age A] [--up AXIS] [--tets N]
-//   [--bodies K/N] [--strict] [--report R.json] -o OUT: every assigned body fractured, the scene
+//   [--bodies K/N] [--strict] [--no-cache|--cache-dir D] [--report R.json] -o OUT: every assigned body fractured, the scene
 //   written back with the fragments as child nodes (scene/scene_fracture.hpp).
 // fissure scene merge SLICE.glb… -o OUT: the slices of a --bodies K/N run joined into the file an
 //   unsliced run writes (scene/scene_merge.hpp).
@@ -16,6 +16,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/disk_cache.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
@@ -169,6 +170,8 @@ struct SceneFractureArgs {
   double tets = 0;
   std::string bodies;
   bool strict = false;
+  bool no_cache = false;
+  std::string cache_dir;
   std::string report;
   std::string output;
   bool quiet = false;
@@ -217,6 +220,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const SceneFracture
       b["material"] = r.material_name;
       b["fragments"] = r.fragments;
       b["tets"] = r.tets;
+      b["mesh"] = r.mesh_cached ? "cached" : "made";
       b["seconds"] = {{"meshing", r.seconds.meshing},
                       {"preparation", r.seconds.preparation},
                       {"simulation", r.seconds.simulation},
@@ -242,6 +246,7 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   if (!args.bodies.empty()) std::tie(options.slice, options.slices) = parse_slice(args.bodies);
   options.threads = thread_count();
   options.cancel = &interrupt_token();
+  if (!args.no_cache) options.cache_dir = args.cache_dir.empty() ? default_cache_directory() : fs::path(args.cache_dir);
   // A bar on a terminal, one plain line per body otherwise (a log keeps them).
   TerminalProgress progress(args.quiet);
   const bool lines = !args.quiet && !progress.enabled();
@@ -356,6 +361,10 @@ void register_scene(CLI::App& app, Action& action) {
       ->check(count_in(10, 5e7));
   fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are");
   fracture->add_flag("--strict", fr->strict, "Fail (and write nothing) when a body is skipped or an assignment matches nothing");
+  fracture->add_flag("--no-cache", fr->no_cache, "Make every tet mesh afresh and cache none");
+  fracture->add_option("--cache-dir", fr->cache_dir,
+                       "Where tet meshes are cached by content (default: $FISSURE_CACHE_DIR, else $XDG_CACHE_HOME/fissure, "
+                       "else ~/.cache/fissure; capped at $FISSURE_CACHE_MAX_MB, default 4096)");
   fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
   fracture->add_option("-o,--output", fr->output, "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply")->required();
   fracture->add_flag("-q,--quiet", fr->quiet, "Print nothing on success, no progress");

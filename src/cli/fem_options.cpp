@@ -2,6 +2,7 @@
 
 #include "option_checks.hpp"
 
+#include "fissure/base/disk_cache.hpp"
 #include "fissure/base/error.hpp"
 
 #include <iostream>

@@ -1,6 +1,7 @@
 #include "fissure/fem/modal_basis.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/disk_cache.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/huge_pages.hpp"
 #include "fissure/base/memory.hpp"
@@ -645,13 +646,6 @@ ModalBasis ModalBasis::load(const fs::path& path, const Hash128& expected_key) {
   return basis;
 }
 
-fs::path default_cache_directory() {
-  if (const char* dir = std::getenv("FISSURE_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "fissure";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "fissure";
-  return fs::temp_directory_path() / "fissure-cache";
-}
-
 ModalBasis cached_modal_basis(std::shared_ptr<const ElasticBody> body, const std::vector<int>& fixed_dofs,
                               const ModalOptions& options, const fs::path& cache_dir, bool* loaded,
                               ProgressSink* progress, const CancelToken* cancel, std::string* cache_warning) {
@@ -663,6 +657,7 @@ ModalBasis cached_modal_basis(std::shared_ptr<const ElasticBody> body, const std
   if (fs::exists(file, ec)) {
     try {
       ModalBasis basis = ModalBasis::load(file, key);
+      fs::last_write_time(file, fs::file_time_type::clock::now(), ec);  // used now (disk_cache.hpp's LRU)
       if (loaded) *loaded = true;
       return basis;
     } catch (const IoError&) {
@@ -679,6 +674,7 @@ ModalBasis cached_modal_basis(std::shared_ptr<const ElasticBody> body, const std
   } else {
     try {
       basis.save(file, key);
+      prune_cache(cache_dir, default_cache_size_limit(), file.filename().string());
     } catch (const IoError& e) {
       problem = e.what();
     }

@@ -423,6 +423,13 @@ double tetrahedralize_memory_estimate(int target_tets) {
   return kTetrahedralizeBytesPerTet * target_tets + kTetrahedralizeFixedBytes;
 }
 
+std::int64_t tetrahedralize_version() {
+  // Bump kAlgorithm when a change to this file (criteria, attempts, sliver passes, node order)
+  // changes the mesh some surface gets: cached meshes of the old code then stop matching.
+  constexpr std::int64_t kAlgorithm = 1;
+  return kAlgorithm * 100000000000LL + static_cast<std::int64_t>(CGAL_VERSION_NR);
+}
+
 TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& options,
                        TetrahedralizeReport* report, ProgressSink* progress, const CancelToken* cancel) {
   options.validate();

@@ -1,8 +1,10 @@
 #include "fissure/scene/scene_fracture.hpp"
 
 #include "fissure/base/content_hash.hpp"
+#include "fissure/base/disk_cache.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/parallel.hpp"
+#include "fissure/mesh/tet_mesh_cache.hpp"
 #include "fissure/scene/fragment_export.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_merge.hpp"
@@ -136,8 +138,10 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   }
 
   const Eigen::Vector3d up = (options.up ? *options.up : scene.up).normalized();
+  const std::uint64_t cache_cap = options.cache_max_bytes > 0 ? options.cache_max_bytes : default_cache_size_limit();
   std::mutex done_mutex;
   int done = 0;
+  std::string cache_warning;
   parallel_for_dynamic(work.size(), options.threads, [&](std::size_t w) {
     const std::size_t b = work[w];
     SceneBodyReport& report = out.reports[b];
@@ -155,7 +159,19 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       request.seed = report.seed;
       request.age = options.age;
       request.target_tets = options.target_tets;
-      done_body.fracture = fracture_body_surface(request, 1, options.mesher, options.cancel);
+      Mesher mesher = options.mesher;
+      if (!mesher && !options.cache_dir.empty()) {
+        mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
+          TetMeshCacheResult r = cached_tetrahedralize(surface, o, options.cache_dir, cache_cap, options.cancel);
+          report.mesh_cached = r.loaded;
+          if (!r.warning.empty()) {
+            const std::lock_guard<std::mutex> lock(done_mutex);
+            cache_warning = r.warning;
+          }
+          return std::move(r.mesh);
+        };
+      }
+      done_body.fracture = fracture_body_surface(request, 1, mesher, options.cancel);
       const BodyFracture& result = done_body.fracture;
       report.status = SceneBodyReport::Status::Fractured;
       report.fragments = static_cast<int>(result.fragments.size());
@@ -173,6 +189,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       options.on_body_done(++done, static_cast<int>(work.size()), report.path);
     }
   });
+  if (!cache_warning.empty()) out.warnings.push_back(cache_warning);
   return out;
 }
 

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <map>
 #include <string>
 
 namespace fissure {
@@ -116,6 +117,31 @@ TEST(SceneCli, FractureTheStreetInSlicesAndMergeThem) {
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find(street + ": not a slice"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir / "m.glb"));
+}
+
+// The tet mesh cache: a cold run makes and stores every body's mesh, a warm run reads them all,
+// and both write the bytes a run without the cache writes.
+TEST(SceneCli, AWarmCacheMeshesNothingAndChangesNoByte) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-cache");
+  const std::string street = (dir / "street.glb").string();
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street).exit_code, 0);
+  const std::string run = fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 -q";
+  const std::string cache = " --cache-dir " + (dir / "cache").string();
+  std::map<std::string, int> meshes;  // "made" / "cached" → bodies, over both runs
+  for (const char* name : {"cold", "warm"}) {
+    const auto r = test::run_command(run + cache + " --report " + (dir / name).string() + ".json -o " + (dir / name).string() + ".glb");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const nlohmann::json report = nlohmann::json::parse(read_file(dir / (std::string(name) + ".json")));
+    for (const auto& b : report["bodies"]) {
+      if (b["status"] == "fractured") ++meshes[std::string(name) + " " + b["mesh"].get<std::string>()];
+    }
+  }
+  const std::map<std::string, int> expected{{"cold made", 2}, {"warm cached", 2}};
+  EXPECT_EQ(meshes, expected) << "a body meshed when it should have been cached, or the reverse";
+  const auto r = test::run_command(run + " --no-cache -o " + (dir / "uncached.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "warm.glb"));
+  EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "uncached.glb"));
 }
 
 // Wrong assignments: a material name no library has skips its bodies with the reason (exit 0,

@@ -118,10 +118,6 @@ private:
   MassKind m_mass = MassKind::Lumped;
 };
 
-/// Where cached modal bases live: $FISSURE_CACHE_DIR, else $XDG_CACHE_HOME/fissure, else
-/// ~/.cache/fissure.
-std::filesystem::path default_cache_directory();
-
 /// Bytes a modal analysis needs at its peak, estimated from the free dofs, the modes, the Krylov
 /// size and nnz(K_ff): Φ (twice), the Krylov basis with a restart copy, the dense ncv² matrices of
 /// Rayleigh–Ritz and the factor.

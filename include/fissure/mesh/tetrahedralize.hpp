@@ -60,6 +60,11 @@ struct TetrahedralizeReport {
 /// from 24K to 300K tets, see tetrahedralize.cpp) plus 100 MB, so 5M tets ≈ 3.6 GB and 50M ≈ 35 GB.
 double tetrahedralize_memory_estimate(int target_tets);
 
+/// Identifies what tetrahedralize() computes: Fissure's own algorithm version (bumped whenever a
+/// change alters its output for some input) combined with CGAL's version. Caches of its meshes
+/// (tet_mesh_cache.hpp) key on it, so a mesh made by other code is never reused.
+std::int64_t tetrahedralize_version();
+
 /// Tetrahedralises a closed, consistently oriented, manifold surface (see repair_surface). The
 /// tets come out positively oriented, nodes in order of first use by the tets. Deterministic.
 /// Every attempt is checked against the surface (boundary nodes on it, volume, boundary area,

@@ -19,6 +19,7 @@
 #include "fissure/scene/body_fracture.hpp"
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <map>
 #include <optional>
@@ -40,7 +41,11 @@ struct SceneFractureOptions {
   int target_tets = 0;                    ///< per body; 0: BodyFractureRequest's default
   int threads = 1;                        ///< bodies run in parallel, one thread each
   int slice = 1, slices = 1;              ///< K of N, K from 1
-  Mesher mesher;                          ///< empty: tetrahedralize()
+  Mesher mesher;                          ///< empty: tetrahedralize(), through the cache below
+  /// Tet meshes are cached here by content (tet_mesh_cache.hpp), so a second run, or a run after
+  /// an edit to other bodies, meshes nothing it has meshed before. Empty: no cache.
+  std::filesystem::path cache_dir;
+  std::uint64_t cache_max_bytes = 0;      ///< the cache's cap; 0: default_cache_size_limit()
   const CancelToken* cancel = nullptr;
   /// Called after each assigned body of the slice finishes (from worker threads, one at a time):
   /// bodies done, bodies to do, the body's path.
@@ -58,6 +63,7 @@ struct SceneBodyReport {
   std::uint64_t seed = 0;
   int fragments = 0;                      ///< closed meshes
   int tets = 0;
+  bool mesh_cached = false;               ///< its tet mesh came from the cache
   BodyFracture::Seconds seconds;
 };
 
@@ -76,7 +82,7 @@ struct SceneFracture {
   std::vector<SceneBodyReport> reports;   ///< one per body
   std::vector<std::optional<FracturedSceneBody>> results;  ///< one per body, set when fractured
   /// Assignments that match nothing in the scene ("--assign tiles=…: the scene has no material
-  /// tiles (it has: a, b)"); the run goes on without them.
+  /// tiles (it has: a, b)"), and a cache that could not be written; the run goes on.
   std::vector<std::string> warnings;
   int slice = 1, slices = 1;              ///< the slice run (SceneFractureOptions)
   /// What identifies the run across its slices: a hash of the scene's content (nodes, meshes,
