@@ -30,7 +30,9 @@ function(fissure_add_module name)
   add_library(fissure_${name} STATIC ${ARG_SOURCES})
   add_library(Fissure::${name} ALIAS fissure_${name})
   target_include_directories(fissure_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include
-                                             PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+                                             PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}
+                                                     # private headers shared by modules (json_fields.hpp)
+                                                     ${PROJECT_SOURCE_DIR}/src/shared)
   target_link_libraries(fissure_${name} PUBLIC fissure_arch_flags ${ARG_PUBLIC_DEPS}
                                         PRIVATE fissure_build_flags ${ARG_PRIVATE_DEPS})
 endfunction()

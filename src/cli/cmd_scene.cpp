@@ -1,7 +1,7 @@
 // fissure scene info SCENE [--json]: a scene's bodies (node instances of meshes), their scene
 // materials, sizes and whether each can be fractured (closed or safely repaired), and the
 // materials' texture references, missing ones named.
-// fissure scene fracture SCENE --assign NAME=MATERIAL… [--seed S] [--age A] [--up AXIS] [--tets N]
+// fissure scene fracture SCENE|PROJECT [--assign NAME=MATERIAL…] [--save-project P.json] [--seed S] [--age A] [--up AXIS] [--tets N]
 //   [--bodies K/N] [--strict] [--no-cache|--cache-dir D] [--report R.json] -o OUT: every assigned body fractured, the scene
 //   written back with the fragments as child nodes (scene/scene_fracture.hpp).
 // fissure scene merge SLICE.glb… -o OUT: the slices of a --bodies K/N run joined into the file an
@@ -28,6 +28,7 @@
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_fracture.hpp"
 #include "fissure/scene/scene_merge.hpp"
+#include "fissure/scene/scene_project.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -62,6 +63,13 @@ bool texture_found(const fs::path& scene, const std::string& reference) {
   std::error_code ec;
   const fs::path path(reference);
   return fs::is_regular_file(path.is_absolute() ? path : scene.parent_path() / path, ec);
+}
+
+// [[min x, y, z], [max x, y, z]] of world vertices: where to place a project's loads.
+nlohmann::ordered_json bounds_json(const Eigen::MatrixX3d& vertices) {
+  if (vertices.rows() == 0) return nullptr;
+  const Eigen::Vector3d lo = vertices.colwise().minCoeff(), hi = vertices.colwise().maxCoeff();
+  return {{lo.x(), lo.y(), lo.z()}, {hi.x(), hi.y(), hi.z()}};
 }
 
 int run_scene_info(const SceneInfoArgs& args) {
@@ -122,6 +130,7 @@ int run_scene_info(const SceneInfoArgs& args) {
                                   {"material", material_names(bodies[i])},
                                   {"triangles", c.world.faces.rows()},
                                   {"size", {c.extent.x(), c.extent.y(), c.extent.z()}},
+                                  {"bounds", bounds_json(c.world.vertices)},
                                   {"fracturable", c.fracturable}};
       if (c.fracturable) {
         b["volume"] = c.volume;
@@ -162,9 +171,11 @@ int run_scene_info(const SceneInfoArgs& args) {
 }
 
 struct SceneFractureArgs {
-  std::string scene;
+  std::string scene;                 // a scene, or a project (.json)
   std::vector<std::string> assign;
   std::uint64_t seed = 1;
+  bool seed_given = false;
+  std::string save_project;
   double age = -1.0;  // < 0: each material's
   std::string up;
   double tets = 0;
@@ -208,7 +219,8 @@ std::pair<int, int> parse_slice(const std::string& text) {
   return {k, n};
 }
 
-nlohmann::ordered_json report_json(const SceneFracture& run, const SceneFractureArgs& args, double seconds) {
+nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& scene, const std::string& output,
+                                        std::uint64_t seed, double seconds) {
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (const SceneBodyReport& r : run.reports) {
     nlohmann::ordered_json b = {{"path", r.path}, {"status", status_name(r.status)}};
@@ -221,6 +233,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const SceneFracture
       b["fragments"] = r.fragments;
       b["tets"] = r.tets;
       b["mesh"] = r.mesh_cached ? "cached" : "made";
+      b["loads"] = r.loads;
       b["seconds"] = {{"meshing", r.seconds.meshing},
                       {"preparation", r.seconds.preparation},
                       {"simulation", r.seconds.simulation},
@@ -228,21 +241,74 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const SceneFracture
     }
     bodies.push_back(b);
   }
-  return {{"scene", args.scene}, {"output", args.output}, {"seed", args.seed}, {"warnings", run.warnings},
+  return {{"scene", scene}, {"output", output}, {"seed", seed}, {"warnings", run.warnings},
           {"seconds", seconds}, {"bodies", bodies}};
 }
 
-int run_scene_fracture(const SceneFractureArgs& args) {
-  check_scene_output_path(args.output);
-  if (!args.report.empty()) check_output_path(args.report);
+// The run a project describes, with the command line's options over it: --assign adds to and
+// overrides its assignments; --seed, --age, --up, --tets, -o and --report replace its values.
+struct SceneFractureRun {
+  std::string scene;                 // the scene file to read
   SceneFractureOptions options;
-  options.assignments = parse_assignments(args.assign);
-  if (options.assignments.by_material.empty() && options.assignments.by_path.empty())
+  std::string output, report;
+  SceneProject project;              // what --save-project writes
+};
+
+SceneFractureRun scene_fracture_run(const SceneFractureArgs& args) {
+  SceneFractureRun run;
+  SceneProject& project = run.project;
+  fs::path base;                     // the folder the project's paths are relative to
+  if (is_scene_project_file(args.scene)) {
+    project = read_scene_project(args.scene);
+    base = fs::path(args.scene);
+    run.scene = project_path(base, project.scene).string();
+    if (!project.output.empty()) run.output = project_path(base, project.output).string();
+    if (!project.report.empty()) run.report = project_path(base, project.report).string();
+  } else {
+    project.scene = args.scene;
+    run.scene = args.scene;
+  }
+  const SceneAssignments cli = parse_assignments(args.assign);
+  for (const auto& [k, v] : cli.by_material) project.assignments.by_material[k] = v;
+  for (const auto& [k, v] : cli.by_path) project.assignments.by_path[k] = v;
+  if (args.seed_given) project.seed = args.seed;
+  if (args.age >= 0.0) project.age = args.age;
+  if (!args.up.empty()) project.up = args.up;
+  if (args.tets > 0) project.tets = static_cast<int>(std::lround(args.tets));
+  if (!args.output.empty()) run.output = args.output;
+  if (!args.report.empty()) run.report = args.report;
+  if (run.output.empty())
+    throw InvalidInput("no output: give -o OUT.glb" + std::string(base.empty() ? "" : " or \"export\": {\"output\": …} in " + args.scene));
+  run.options = scene_fracture_options(project, args.scene);
+  if (run.options.assignments.by_material.empty() && run.options.assignments.by_path.empty())
     throw InvalidInput("nothing to fracture: give --assign SCENE_MATERIAL=MATERIAL (fissure scene info lists the scene's materials)");
-  options.seed = args.seed;
-  if (args.age >= 0.0) options.age = args.age;
-  if (!args.up.empty()) options.up = parse_up_axis(args.up);
-  options.target_tets = static_cast<int>(std::lround(args.tets));
+  return run;
+}
+
+// The project --save-project writes: the run's, its paths made relative to the project's folder
+// when they lie under it, so the folder can move as a whole.
+SceneProject project_to_save(SceneProject project, const SceneFractureRun& run, const fs::path& file) {
+  const fs::path folder = fs::absolute(file).parent_path();
+  const auto relative = [&](const std::string& path) {
+    if (path.empty()) return path;
+    const fs::path r = fs::absolute(path).lexically_normal().lexically_relative(folder);
+    return r.empty() || *r.begin() == ".." ? fs::absolute(path).lexically_normal().string() : r.string();
+  };
+  project.scene = relative(run.scene);
+  project.output = relative(run.output);
+  project.report = relative(run.report);
+  return project;
+}
+
+int run_scene_fracture(const SceneFractureArgs& args) {
+  SceneFractureRun setup = scene_fracture_run(args);
+  check_scene_output_path(setup.output);
+  if (!setup.report.empty()) check_output_path(setup.report);
+  if (!args.save_project.empty()) {
+    if (!is_scene_project_file(args.save_project)) throw InvalidInput("--save-project " + args.save_project + ": a project file ends in .json");
+    write_scene_project(args.save_project, project_to_save(setup.project, setup, args.save_project));
+  }
+  SceneFractureOptions& options = setup.options;
   if (!args.bodies.empty()) std::tie(options.slice, options.slices) = parse_slice(args.bodies);
   options.threads = thread_count();
   options.cancel = &interrupt_token();
@@ -263,8 +329,8 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   ExportScene out;
   {
     AbandonableWork work;
-    progress.stage("reading " + args.scene);
-    scene = import_scene(args.scene);
+    progress.stage("reading " + setup.scene);
+    scene = import_scene(setup.scene);
     run = fracture_scene(scene, options);
     throw_if_interrupted();
     out = scene_export(scene, run);
@@ -283,16 +349,16 @@ int run_scene_fracture(const SceneFractureArgs& args) {
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!args.report.empty()) write_file_atomically(args.report, report_json(run, args, seconds).dump(2) + "\n");
+  if (!setup.report.empty()) write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds).dump(2) + "\n");
   if (args.strict && (skipped > 0 || !run.warnings.empty())) {
     throw InvalidInput("--strict: " + std::to_string(skipped) + " bodies skipped, " + std::to_string(run.warnings.size()) +
-                       " assignments unmatched (see above); nothing written to " + args.output);
+                       " assignments or setups unmatched (see above); nothing written to " + setup.output);
   }
-  write_scene(args.output, out);
+  write_scene(setup.output, out);
   if (!args.quiet) {
     std::printf("%s: %d bodies fractured into %d fragments, %d skipped, %zu untouched; wrote %s in %s s\n",
-                args.scene.c_str(), fractured, fragments, skipped, run.reports.size() - fractured - skipped,
-                args.output.c_str(), format_number(seconds, 3).c_str());
+                setup.scene.c_str(), fractured, fragments, skipped, run.reports.size() - fractured - skipped,
+                setup.output.c_str(), format_number(seconds, 3).c_str());
   }
   return kExitOk;
 }
@@ -349,11 +415,13 @@ void register_scene(CLI::App& app, Action& action) {
   auto fr = std::make_shared<SceneFractureArgs>();
   auto* fracture = cmd->add_subcommand("fracture", "Fracture every body of the assigned materials and write the scene with its fragments");
   add_threads_option(*fracture);
-  fracture->add_option("SCENE", fr->scene, "Scene file (glTF, GLB, FBX, OBJ, PLY, STL, OFF)")->required();
+  fracture->add_option("SCENE", fr->scene,
+                       "Scene file (glTF, GLB, FBX, OBJ, PLY, STL, OFF), or a project (.json, docs/scenes.md) whose "
+                       "settings the other options override")->required();
   fracture->add_option("--assign", fr->assign,
                        "SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL (repeatable): a fracture material file or a "
                        "library name for every body of that scene material, or for one node (overrides)");
-  fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path")->default_val(1);
+  auto* seed = fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path (default 1)");
   fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(CLI::Range(0.0, 1e6));
   fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
@@ -366,9 +434,16 @@ void register_scene(CLI::App& app, Action& action) {
                        "Where tet meshes are cached by content (default: $FISSURE_CACHE_DIR, else $XDG_CACHE_HOME/fissure, "
                        "else ~/.cache/fissure; capped at $FISSURE_CACHE_MAX_MB, default 4096)");
   fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
-  fracture->add_option("-o,--output", fr->output, "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply")->required();
+  fracture->add_option("--save-project", fr->save_project,
+                       "Write the run's settings as a project (.json) before running: fissure scene fracture PROJECT "
+                       "repeats the run");
+  fracture->add_option("-o,--output", fr->output,
+                       "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply (required unless a project gives it)");
   fracture->add_flag("-q,--quiet", fr->quiet, "Print nothing on success, no progress");
-  fracture->callback([&action, fr] { action = [fr] { return run_scene_fracture(*fr); }; });
+  fracture->callback([&action, fr, seed] {
+    fr->seed_given = seed->count() > 0;
+    action = [fr] { return run_scene_fracture(*fr); };
+  });
 
   auto merge_args = std::make_shared<SceneMergeArgs>();
   auto* merge = cmd->add_subcommand("merge", "Join the slices of a fissure scene fracture --bodies K/N run into the file an unsliced run writes");

@@ -49,9 +49,11 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   scenario.free_body = request.free_body;
   scenario.supports = request.supports;
   scenario.loads = request.loads;
+  for (const PatchLoad& p : request.patch_loads)
+    scenario.loads.push_back(patch_load(*mesh, p.normal, p.position, p.magnitude, p.radius));
   // The fitted rule's patch pushes with 1 N until the body is prepared: the force that keeps the
   // fit's stress takes the prepared body to measure.
-  const bool fitted_load_rule = fit && request.loads.empty();
+  const bool fitted_load_rule = fit && scenario.loads.empty();
   if (fitted_load_rule) scenario.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, 1.0, request.seed)};
   const PreparedBody prepared(mesh, params.elastic(), scenario, threads);
   StressField initial = prepared.initial_stress(params);

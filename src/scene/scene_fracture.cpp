@@ -55,6 +55,16 @@ std::vector<std::string> unmatched_assignments(const ImportedScene& scene, const
   return warnings;
 }
 
+std::vector<std::string> unmatched_setups(const std::vector<SceneBody>& bodies, const std::map<std::string, SceneBodySetup>& setups) {
+  std::set<std::string> paths;
+  for (const SceneBody& b : bodies) paths.insert(b.path);
+  std::vector<std::string> warnings;
+  for (const auto& [path, setup] : setups) {
+    if (!paths.count(path)) warnings.push_back("loads and supports for " + path + ": the scene has no body " + path);
+  }
+  return warnings;
+}
+
 // The run's identity (SceneFracture::run): everything that decides its output but the slice.
 std::string run_identity(const ImportedScene& scene, const SceneFractureOptions& o) {
   ContentHasher h;
@@ -70,6 +80,11 @@ std::string run_identity(const ImportedScene& scene, const SceneFractureOptions&
   }
   for (const auto& [k, v] : o.assignments.by_material) h.add("material").add(k).add(v);
   for (const auto& [k, v] : o.assignments.by_path) h.add("path").add(k).add(v);
+  for (const auto& [path, setup] : o.body_setups) {
+    h.add("setup").add(path).add(static_cast<std::int64_t>(setup.free_body));
+    for (const PatchLoad& l : setup.loads) h.add("load").add(l.position).add(l.normal).add(l.magnitude).add(l.radius);
+    for (const SupportSpec& s : setup.supports) h.add("support").add(s.spec);
+  }
   h.add(static_cast<std::int64_t>(o.seed)).add(o.age ? *o.age : -1.0).add(static_cast<std::int64_t>(o.target_tets));
   h.add(o.up ? Eigen::Vector3d(*o.up) : Eigen::Vector3d::Zero());
   return h.finish().hex();
@@ -102,6 +117,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   out.run = run_identity(scene, options);
   out.bodies = scene_bodies(scene);
   out.warnings = unmatched_assignments(scene, out.bodies, options.assignments);
+  for (std::string& w : unmatched_setups(out.bodies, options.body_setups)) out.warnings.push_back(std::move(w));
   out.reports.resize(out.bodies.size());
   out.results.resize(out.bodies.size());
 
@@ -159,6 +175,11 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       request.seed = report.seed;
       request.age = options.age;
       request.target_tets = options.target_tets;
+      if (auto setup = options.body_setups.find(report.path); setup != options.body_setups.end()) {
+        request.patch_loads = setup->second.loads;
+        request.supports = setup->second.supports;
+        request.free_body = setup->second.free_body;
+      }
       Mesher mesher = options.mesher;
       if (!mesher && !options.cache_dir.empty()) {
         mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
@@ -176,6 +197,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       report.status = SceneBodyReport::Status::Fractured;
       report.fragments = static_cast<int>(result.fragments.size());
       report.tets = result.tets;
+      for (const LoadSpec& l : result.loads) report.loads.push_back(l.spec);
       report.seconds = result.seconds;
       out.results[b] = std::move(done_body);
     } catch (const Cancelled&) {

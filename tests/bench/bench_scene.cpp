@@ -1,12 +1,15 @@
 // Whole scenes (issue 13): the bundled street fractured end to end, and what laziness saves.
 //
-// - BM_Street/slabs:S: the street demo (S sidewalk slabs in two rows, a curb, a road; what
+// - BM_Street/slabs:S/cache:C: the street demo (S sidewalk slabs in two rows, a curb, a road; what
 //   assets/scenes/street.glb holds at S = 24) read from its GLB, every slab and the curb
 //   fractured with the bundled concrete at age 12 (scripts/demo.sh's run), the road left as it
 //   is, the scene exported and encoded as GLB in memory. On FISSURE_THREADS threads, bodies in
 //   parallel (scripts/bench.sh: one). Counters: `per_body_s` = the time over the fractured bodies;
 //   `meshing`, `preparation`, `simulation`, `fragments` = the shares of the bodies' summed
-//   seconds; `export_s` = scene_export + GLB; `pieces` = fragments in all.
+//   seconds; `export_s` = scene_export + GLB; `pieces` = fragments in all. C = 0: no tet mesh
+//   cache; 1: a cold one (emptied before each iteration, so the entries' writes are paid);
+//   2: a warm one (filled by a run before timing: what a second run of the same scene costs).
+//   `cached` = bodies whose mesh came from the cache.
 // - BM_OneBodyOf/bodies:B: a street of B bodies with one slab assigned (by node path), against
 //   B = 1 (the slab alone): the rest of the scene costs only its reading and export, never a
 //   mesh (target: within 10 % of the one body alone).
@@ -47,14 +50,25 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 void BM_Street(benchmark::State& state) {
   const int slabs = static_cast<int>(state.range(0));
+  const int cache = static_cast<int>(state.range(1));
   SceneFractureOptions options;
   options.assignments.by_material = {{"concrete", "concrete"}, {"curb", "concrete"}};
   options.age = 12.0;
   options.threads = thread_count();
+  if (cache > 0) {
+    options.cache_dir = fs::path(FISSURE_BENCH_DIR) / "bench-scene-cache";
+    fs::remove_all(options.cache_dir);
+    if (cache == 2) fracture_scene(street(slabs, true), options);
+  }
   BodyFracture::Seconds shares;
   double export_s = 0.0;
-  int bodies = 0, pieces = 0;
+  int bodies = 0, pieces = 0, cached = 0;
   for (auto _ : state) {
+    if (cache == 1) {
+      state.PauseTiming();
+      fs::remove_all(options.cache_dir);
+      state.ResumeTiming();
+    }
     const ImportedScene scene = street(slabs, true);
     const SceneFracture run = fracture_scene(scene, options);
     const auto start = std::chrono::steady_clock::now();
@@ -62,10 +76,11 @@ void BM_Street(benchmark::State& state) {
     export_s = seconds_since(start);
     benchmark::DoNotOptimize(bytes.data());
     shares = {};
-    bodies = pieces = 0;
+    bodies = pieces = cached = 0;
     for (const SceneBodyReport& r : run.reports) {
       if (r.status != SceneBodyReport::Status::Fractured) continue;
       ++bodies;
+      cached += r.mesh_cached ? 1 : 0;
       pieces += r.fragments;
       shares.meshing += r.seconds.meshing;
       shares.preparation += r.seconds.preparation;
@@ -82,8 +97,17 @@ void BM_Street(benchmark::State& state) {
   state.counters["export_s"] = export_s;
   state.counters["pieces"] = pieces;
   state.counters["bodies"] = bodies;
+  state.counters["cached"] = cached;
 }
-BENCHMARK(BM_Street)->ArgName("slabs")->Arg(4)->Arg(24)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_Street)
+    ->ArgNames({"slabs", "cache"})
+    ->Args({4, 0})
+    ->Args({24, 0})
+    ->Args({24, 1})
+    ->Args({24, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 void BM_OneBodyOf(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));

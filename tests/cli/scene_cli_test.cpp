@@ -144,6 +144,42 @@ TEST(SceneCli, AWarmCacheMeshesNothingAndChangesNoByte) {
   EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "uncached.glb"));
 }
 
+// A project saved by one run repeats it: the same bytes from `scene fracture PROJECT`, its paths
+// relative to the project's folder (so the folder can move whole); a corrupt project or one whose
+// scene has moved gets one line and writes nothing.
+TEST(SceneCli, AProjectRepeatsItsRunAndBadProjectsGetOneLine) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-project");
+  const std::string street = (dir / "street.glb").string();
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street).exit_code, 0);
+  auto r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 --seed 9 -q" +
+                             " --save-project " + (dir / "p.json").string() + " -o " + (dir / "first.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json project = nlohmann::json::parse(read_file(dir / "p.json"));
+  EXPECT_EQ(project["scene"], "street.glb");
+  EXPECT_EQ(project["export"]["output"], "first.glb");
+  EXPECT_EQ(project["seed"], 9);
+
+  fs::create_directories(dir / "moved");
+  for (const char* f : {"street.glb", "p.json"}) fs::rename(dir / f, dir / "moved" / f);
+  r = test::run_command(fissure() + " scene fracture -q " + (dir / "moved" / "p.json").string() + " -o " + (dir / "again.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(read_file(dir / "again.glb") == read_file(dir / "first.glb")) << "the project did not repeat its run";
+
+  // The scene left without its project: named, with what to do.
+  fs::rename(dir / "moved" / "street.glb", dir / "street.glb");
+  r = test::run_command(fissure() + " scene fracture -q " + (dir / "moved" / "p.json").string() + " -o " + (dir / "x.glb").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("its scene street.glb is not at"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("was it moved?"), std::string::npos) << r.output;
+  std::string text = read_file(dir / "moved" / "p.json");
+  write_file_atomically(dir / "moved" / "p.json", text.substr(0, text.size() / 2));
+  r = test::run_command(fissure() + " scene fracture -q " + (dir / "moved" / "p.json").string() + " -o " + (dir / "x.glb").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("p.json: not a valid Fissure project: syntax error"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "x.glb"));
+}
+
 // Wrong assignments: a material name no library has skips its bodies with the reason (exit 0,
 // a warning line each) unless --strict; an assignment to a material the scene lacks is named.
 TEST(SceneCli, BadAssignmentsAreNamed) {

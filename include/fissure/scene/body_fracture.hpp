@@ -35,11 +35,23 @@ namespace fissure {
 /// puts another in.
 using Mesher = std::function<TetMesh(const SurfaceMesh&, const TetrahedralizeOptions&)>;
 
+/// A patch load as an artist places it (a click on the body): the boundary faces within `radius`
+/// of `position` that face along `normal`, pushed into the body along −normal with `magnitude`
+/// newtons. On the mesh, the radius is widened to two element sizes when it is smaller, so the
+/// patch always holds faces (patch_load(), fracture_scenario.hpp).
+struct PatchLoad {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< world coordinates, m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();   ///< unit
+  double magnitude = 0.0;                              ///< N, > 0
+  double radius = 0.0;                                 ///< m, > 0
+};
+
 struct BodyFractureRequest {
   SurfaceMesh surface;                 ///< closed, world coordinates, m
   FractureMaterial material;
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();  ///< unit; the visible face looks along it
-  std::vector<LoadSpec> loads;         ///< world coordinates; empty: the material's rule (above)
+  std::vector<LoadSpec> loads;         ///< world coordinates; these and patch_loads empty: the material's rule
+  std::vector<PatchLoad> patch_loads;  ///< world coordinates, added to `loads` once the body is meshed
   std::vector<SupportSpec> supports;   ///< empty: rests on its lowest face
   bool free_body = false;
   std::uint64_t seed = 1;

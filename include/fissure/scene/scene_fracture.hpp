@@ -33,8 +33,18 @@ struct SceneAssignments {
   std::map<std::string, std::string> by_path;      ///< node path → fracture material (and its subtree)
 };
 
+/// How one body is struck and held, in world coordinates (fracture_scenario.hpp's meaning):
+/// no loads, its material's rule; no supports and not free, it rests on its lowest face.
+struct SceneBodySetup {
+  std::vector<PatchLoad> loads;
+  std::vector<SupportSpec> supports;
+  bool free_body = false;
+};
+
 struct SceneFractureOptions {
   SceneAssignments assignments;
+  /// By body path. A setup for a path that is no body is a warning, like an assignment.
+  std::map<std::string, SceneBodySetup> body_setups;
   std::uint64_t seed = 1;                 ///< the project seed
   std::optional<double> age;              ///< unset: each material's
   std::optional<Eigen::Vector3d> up;      ///< unset: the scene's (its format's convention)
@@ -64,6 +74,7 @@ struct SceneBodyReport {
   int fragments = 0;                      ///< closed meshes
   int tets = 0;
   bool mesh_cached = false;               ///< its tet mesh came from the cache
+  std::vector<std::string> loads;         ///< the loads as applied, as `--load` specs (forces in N)
   BodyFracture::Seconds seconds;
 };
 

@@ -1,0 +1,81 @@
+#pragma once
+/// A scene project (issue 13): everything a scene fracture run needs, in one versioned JSON file,
+/// so the result regenerates from it byte for byte, and the studio saves and opens the same file.
+///
+///   {
+///     "fissure_project": 1,
+///     "scene": "street.glb",                  // relative to the project's folder, or absolute
+///     "seed": 7, "age": 12, "up": "+y", "tets": 0,
+///     "assign": {"materials": {"concrete": "concrete"}, "nodes": {"/street/curb": "granite.json"}},
+///     "bodies": {
+///       "/street/sidewalk/slab_03": {
+///         "loads": [{"position": [1.2, 0.15, 0.3], "normal": [0, 1, 0], "magnitude": 800, "radius": 0.05}],
+///         "supports": ["box:0,0,0,2,0.01,1@y"]   // or "free": true
+///       }
+///     },
+///     "export": {"output": "street-broken.glb", "report": "report.json"}
+///   }
+///
+/// A load is a patch in world coordinates (body_fracture.hpp's PatchLoad: the boundary faces
+/// within `radius` of `position` facing along `normal`, pushed into the body with `magnitude`
+/// newtons; `fissure scene info --json` gives each body's bounds to place it). Supports use `fissure fracture --fix`'s selections (fem/supports.hpp),
+/// in world coordinates. A body with no loads gets its material's rule; with no supports it
+/// rests on its lowest face along up. Unset "age", "up", "tets": each material's, the format's,
+/// the default. Unknown and repeated keys are refused (a typo must not pass as a default).
+#include "fissure/scene/scene_fracture.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fissure {
+
+constexpr int kSceneProjectVersion = 1;
+
+struct SceneBodySetupEntry {
+  std::vector<PatchLoad> loads;
+  std::vector<std::string> supports;   ///< `--fix` selections
+  bool free_body = false;
+};
+
+struct SceneProject {
+  std::string scene;                   ///< as written in the file
+  std::uint64_t seed = 1;
+  std::optional<double> age;
+  std::optional<std::string> up;       ///< "+y", "-z", …
+  int tets = 0;
+  SceneAssignments assignments;
+  std::map<std::string, SceneBodySetupEntry> bodies;  ///< by body path
+  std::string output;                  ///< export: the scene with its fragments, as written
+  std::string report;                  ///< export: the per-body report, as written (empty: none)
+};
+
+/// Reads a project file. Throws IoError naming the file for a missing, unreadable or malformed
+/// file ("project.json: not a valid Fissure project: bodies./a.loads[0].radius is -1, not
+/// positive"), one from a newer Fissure, and InvalidInput when the scene it names is not there
+/// ("project.json: its scene street.glb is not at /work/street.glb: was it moved? Put the scene
+/// back or edit \"scene\" in project.json").
+SceneProject read_scene_project(const std::filesystem::path& file);
+
+/// The project as its file's text (keys in the order above), and written atomically.
+std::string scene_project_to_json(const SceneProject& project);
+void write_scene_project(const std::filesystem::path& file, const SceneProject& project);
+
+/// A path the project gives (scene, output, report): absolute as written, else relative to the
+/// project's folder.
+std::filesystem::path project_path(const std::filesystem::path& project_file, const std::string& written);
+
+/// True when `file` is to be read as a project: its name ends in .json.
+bool is_scene_project_file(const std::filesystem::path& file);
+
+/// The options a project gives to fracture_scene() (assignments, seed, age, up, tets, and each
+/// body's loads and supports); threads, slices and the cache are the caller's. Throws
+/// InvalidInput naming the project, body and entry for a support or up axis that does not parse.
+SceneFractureOptions scene_fracture_options(const SceneProject& project, const std::string& source);
+
+}  // namespace fissure
