@@ -1,7 +1,7 @@
 // fissure scene info SCENE [--json]: a scene's bodies (node instances of meshes), their scene
 // materials, sizes and whether each can be fractured (closed or safely repaired), and the
 // materials' texture references, missing ones named.
-// fissure scene fracture SCENE|PROJECT [--assign NAME=MATERIAL…] [--save-project P.json] [--seed S] [--age A] [--up AXIS] [--tets N]
+// fissure scene fracture SCENE|PROJECT [--assign NAME=MATERIAL…] [--save-project P.json] [--seed S] [--age A] [--up AXIS] [--tets N] [--unit M]
 //   [--bodies K/N] [--strict] [--no-cache|--cache-dir D] [--report R.json] -o OUT: every assigned body fractured, the scene
 //   written back with the fragments as child nodes (scene/scene_fracture.hpp).
 // fissure scene merge SLICE.glb… -o OUT: the slices of a --bodies K/N run joined into the file an
@@ -179,6 +179,7 @@ struct SceneFractureArgs {
   double age = -1.0;  // < 0: each material's
   std::string up;
   double tets = 0;
+  double unit = 0.0;  // 0: the project's, else 1
   std::string bodies;
   bool strict = false;
   bool no_cache = false;
@@ -275,6 +276,7 @@ SceneFractureRun scene_fracture_run(const SceneFractureArgs& args) {
   if (args.age >= 0.0) project.age = args.age;
   if (!args.up.empty()) project.up = args.up;
   if (args.tets > 0) project.tets = static_cast<int>(std::lround(args.tets));
+  if (args.unit > 0.0) project.unit = args.unit;
   if (!args.output.empty()) run.output = args.output;
   if (!args.report.empty()) run.report = args.report;
   if (run.output.empty())
@@ -427,6 +429,8 @@ void register_scene(CLI::App& app, Action& action) {
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
       ->type_name("INT")
       ->check(count_in(10, 5e7));
+  fracture->add_option("--unit", fr->unit, "Metres per scene unit (0.01 for a scene in centimetres; default 1: the format's metres)")
+      ->check(CLI::Range(1e-9, 1e9));
   fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are");
   fracture->add_flag("--strict", fr->strict, "Fail (and write nothing) when a body is skipped or an assignment matches nothing");
   fracture->add_flag("--no-cache", fr->no_cache, "Make every tet mesh afresh and cache none");

@@ -3,6 +3,7 @@
 #include "fissure/base/content_hash.hpp"
 #include "fissure/base/disk_cache.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/base/number_text.hpp"
 #include "fissure/base/parallel.hpp"
 #include "fissure/mesh/tet_mesh_cache.hpp"
 #include "fissure/scene/fragment_export.hpp"
@@ -14,6 +15,7 @@
 #include <Eigen/LU>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -87,6 +89,7 @@ std::string run_identity(const ImportedScene& scene, const SceneFractureOptions&
   }
   h.add(static_cast<std::int64_t>(o.seed)).add(o.age ? *o.age : -1.0).add(static_cast<std::int64_t>(o.target_tets));
   h.add(o.up ? Eigen::Vector3d(*o.up) : Eigen::Vector3d::Zero());
+  if (o.unit != 1.0) h.add("unit").add(o.unit);  // absent at 1, so runs before --unit keep their identity
   return h.finish().hex();
 }
 
@@ -111,7 +114,11 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
     throw InvalidInput("--bodies " + std::to_string(options.slice) + "/" + std::to_string(options.slices) +
                        ": K must be in 1..N");
   }
+  if (!(options.unit > 0.0) || !std::isfinite(options.unit) || options.unit < 1e-9 || options.unit > 1e9) {
+    throw InvalidInput("--unit " + format_number(options.unit) + ": metres per scene unit must be a positive number (0.01 for centimetres)");
+  }
   SceneFracture out;
+  out.unit = options.unit;
   out.slice = options.slice;
   out.slices = options.slices;
   out.run = run_identity(scene, options);
@@ -165,6 +172,10 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       SceneBodyCheck check = check_scene_body(scene, out.bodies[b]);
       report.repairs = check.repairs;
       if (!check.fracturable) throw InvalidInput(check.reason);
+      if (options.unit != 1.0) {
+        check.world.vertices *= options.unit;
+        check.world.appearance.corners *= options.unit;
+      }
       BodyFractureRequest request;
       FracturedSceneBody done_body;
       done_body.appearance = check.world.appearance;
@@ -178,6 +189,15 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       if (auto setup = options.body_setups.find(report.path); setup != options.body_setups.end()) {
         request.patch_loads = setup->second.loads;
         request.supports = setup->second.supports;
+        for (PatchLoad& l : request.patch_loads) {
+          l.position *= options.unit;
+          l.radius *= options.unit;
+        }
+        for (SupportSpec& s : request.supports) {
+          s.selection.box *= options.unit;
+          s.selection.center *= options.unit;
+          s.selection.radius *= options.unit;
+        }
         request.free_body = setup->second.free_body;
       }
       Mesher mesher = options.mesher;
@@ -319,8 +339,10 @@ ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fractu
     std::vector<int> material_map;
     for (int m : result->scene_materials) material_map.push_back(m >= 0 ? m : default_index());
     material_map.push_back(crack_material);
-    // World → the node's frame; fragments keep their origins at their centres of mass.
-    const Eigen::Matrix4d to_node = body.world.inverse();
+    // World (m) → scene units → the node's frame; fragments keep their origins at their centres
+    // of mass. Their extras (volume, mass, centre of mass) stay in SI units.
+    Eigen::Matrix4d to_node = body.world.inverse();
+    to_node.topLeftCorner<3, 3>() /= fracture.unit;
     const Eigen::Matrix3d linear = to_node.topLeftCorner<3, 3>();
     for (ExportPart f : fragments.parts) {
       f.parent = node_part;

@@ -101,7 +101,7 @@ SceneProject read_fields(const json& j) {
     throw FieldError{"fissure_project " + version.dump() + " is from a newer Fissure (this one reads up to version " +
                      std::to_string(kSceneProjectVersion) + ")"};
   }
-  refuse_unknown_keys(j, "", {"fissure_project", "scene", "seed", "age", "up", "tets", "assign", "bodies", "export"});
+  refuse_unknown_keys(j, "", {"fissure_project", "scene", "seed", "age", "up", "tets", "unit", "assign", "bodies", "export"});
   SceneProject p;
   p.scene = string_field(required(j, "", "scene"), "scene");
   if (p.scene.empty()) throw FieldError{"scene is empty"};
@@ -128,6 +128,10 @@ SceneProject read_fields(const json& j) {
     if (!tets.is_number_unsigned() || (tets.get<std::uint64_t>() != 0 && (tets.get<std::uint64_t>() < 10 || tets.get<std::uint64_t>() > 50000000)))
       throw FieldError{"tets is " + tets.dump() + ", not 0 (the default) or a count in 10..5e7"};
     p.tets = static_cast<int>(tets.get<std::uint64_t>());
+  }
+  if (j.contains("unit")) {
+    p.unit = positive_number(j["unit"], "unit");
+    if (p.unit < 1e-9 || p.unit > 1e9) throw FieldError{"unit is " + format_number(p.unit) + ", not in 1e-9..1e9 metres per scene unit"};
   }
   if (j.contains("assign")) {
     const json& assign = j["assign"];
@@ -196,6 +200,7 @@ std::string scene_project_to_json(const SceneProject& p) {
   if (p.age) j["age"] = *p.age;
   if (p.up) j["up"] = *p.up;
   if (p.tets > 0) j["tets"] = p.tets;
+  if (p.unit != 1.0) j["unit"] = p.unit;
   nlohmann::ordered_json assign = nlohmann::ordered_json::object();
   if (!p.assignments.by_material.empty()) assign["materials"] = p.assignments.by_material;
   if (!p.assignments.by_path.empty()) assign["nodes"] = p.assignments.by_path;
@@ -234,6 +239,7 @@ SceneFractureOptions scene_fracture_options(const SceneProject& project, const s
   o.age = project.age;
   if (project.up) o.up = parse_up_axis(*project.up);
   o.target_tets = project.tets;
+  o.unit = project.unit;
   for (const auto& [path, body] : project.bodies) {
     SceneBodySetup setup;
     setup.free_body = body.free_body;

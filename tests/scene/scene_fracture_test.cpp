@@ -175,6 +175,53 @@ TEST(SceneFracture, AssignedBodiesBreakIntoClosedFragmentsThatKeepTheirVolume) {
   for (const auto& [slab, volume] : volume_by_slab) EXPECT_NEAR(volume, 0.018, 0.018 * 1e-5) << slab;
 }
 
+// --unit: the street modelled 16× larger (1/16 m per unit: a power of two, so every coordinate
+// scales exactly and the bodies in metres are the same bits) breaks exactly as the metre street,
+// and its fragments come back in its own units: 16× the metre street's, node for node.
+TEST(SceneFracture, AUnitScalesTheBodiesToMetresAndTheFragmentsBack) {
+  const fs::path dir = test::fresh_temp_dir("scene_unit");
+  DemoStreetOptions o;
+  o.slabs_along = 2;
+  o.slabs_across = 1;
+  o.curb_and_road = false;
+  ExportScene metres = demo_street(o), units = metres;
+  for (ExportPart& p : units.parts) {
+    p.vertices *= 16.0;
+    p.translation *= 16.0;
+  }
+  write_scene(dir / "m.glb", metres);
+  write_scene(dir / "u.glb", units);
+  const ImportedScene m = import_scene(dir / "m.glb"), u = import_scene(dir / "u.glb");
+  SceneFractureOptions options = tile_options(900);
+  const SceneFracture in_metres = fracture_scene(m, options);
+  options.unit = 1.0 / 16.0;
+  const SceneFracture in_units = fracture_scene(u, options);
+  EXPECT_NE(in_metres.run, in_units.run);
+  ASSERT_EQ(in_metres.reports.size(), in_units.reports.size());
+  for (std::size_t b = 0; b < in_metres.reports.size(); ++b) {
+    ASSERT_TRUE(in_metres.results[b] && in_units.results[b]) << in_units.reports[b].reason;
+    const auto& a = in_metres.results[b]->fracture.fragments;
+    const auto& c = in_units.results[b]->fracture.fragments;
+    ASSERT_EQ(a.size(), c.size());
+    for (std::size_t k = 0; k < a.size(); ++k) EXPECT_TRUE(a[k].vertices == c[k].vertices) << "fragment " << k;
+  }
+  // The exports, read back: every node's world transform and geometry 16× the metre scene's.
+  const ExportScene em = scene_export(m, in_metres), eu = scene_export(u, in_units);
+  ASSERT_EQ(em.parts.size(), eu.parts.size());
+  int fragments = 0;
+  for (std::size_t p = 0; p < em.parts.size(); ++p) {
+    ASSERT_EQ(em.parts[p].name, eu.parts[p].name);
+    EXPECT_TRUE(eu.parts[p].translation.isApprox(16.0 * em.parts[p].translation, 1e-12)) << em.parts[p].name;
+    ASSERT_EQ(em.parts[p].vertices.rows(), eu.parts[p].vertices.rows());
+    if (em.parts[p].vertices.rows() > 0)
+      EXPECT_LT((eu.parts[p].vertices - 16.0 * em.parts[p].vertices).cwiseAbs().maxCoeff(), 1e-12 * 16.0) << em.parts[p].name;
+    fragments += em.parts[p].name.rfind("fragment_", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_GT(fragments, 4);
+  options.unit = 0.0;
+  EXPECT_THROW(fracture_scene(u, options), InvalidInput);
+}
+
 TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) {
   const fs::path dir = test::fresh_temp_dir("scene_determinism");
   const ImportedScene scene = small_street(dir);

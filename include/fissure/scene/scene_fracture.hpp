@@ -48,6 +48,10 @@ struct SceneFractureOptions {
   std::uint64_t seed = 1;                 ///< the project seed
   std::optional<double> age;              ///< unset: each material's
   std::optional<Eigen::Vector3d> up;      ///< unset: the scene's (its format's convention)
+  /// Metres per scene unit (0.01 for a scene modelled in centimetres): bodies are fractured at
+  /// their size in metres and written back in the scene's units. 1: the format's convention
+  /// (metres for glTF; assimp converts FBX). Loads and supports are given in scene units.
+  double unit = 1.0;
   int target_tets = 0;                    ///< per body; 0: BodyFractureRequest's default
   int threads = 1;                        ///< bodies run in parallel, one thread each
   int slice = 1, slices = 1;              ///< K of N, K from 1
@@ -96,6 +100,7 @@ struct SceneFracture {
   /// tiles (it has: a, b)"), and a cache that could not be written; the run goes on.
   std::vector<std::string> warnings;
   int slice = 1, slices = 1;              ///< the slice run (SceneFractureOptions)
+  double unit = 1.0;                      ///< metres per scene unit (SceneFractureOptions)
   /// What identifies the run across its slices: a hash of the scene's content (nodes, meshes,
   /// materials) and of every option but the slice. scene_merge.hpp joins only slices that share it.
   std::string run;

@@ -5,7 +5,7 @@
 ///   {
 ///     "fissure_project": 1,
 ///     "scene": "street.glb",                  // relative to the project's folder, or absolute
-///     "seed": 7, "age": 12, "up": "+y", "tets": 0,
+///     "seed": 7, "age": 12, "up": "+y", "tets": 0, "unit": 1,
 ///     "assign": {"materials": {"concrete": "concrete"}, "nodes": {"/street/curb": "granite.json"}},
 ///     "bodies": {
 ///       "/street/sidewalk/slab_03": {
@@ -20,8 +20,8 @@
 /// within `radius` of `position` facing along `normal`, pushed into the body with `magnitude`
 /// newtons; `fissure scene info --json` gives each body's bounds to place it). Supports use `fissure fracture --fix`'s selections (fem/supports.hpp),
 /// in world coordinates. A body with no loads gets its material's rule; with no supports it
-/// rests on its lowest face along up. Unset "age", "up", "tets": each material's, the format's,
-/// the default. Unknown and repeated keys are refused (a typo must not pass as a default).
+/// rests on its lowest face along up. Unset "age", "up", "tets", "unit": each material's, the
+/// format's, the default, 1 (metres; loads and supports are in the scene's units). Unknown and repeated keys are refused (a typo must not pass as a default).
 #include "fissure/scene/scene_fracture.hpp"
 
 #include <Eigen/Core>
@@ -49,6 +49,7 @@ struct SceneProject {
   std::optional<double> age;
   std::optional<std::string> up;       ///< "+y", "-z", …
   int tets = 0;
+  double unit = 1.0;                   ///< metres per scene unit (SceneFractureOptions::unit)
   SceneAssignments assignments;
   std::map<std::string, SceneBodySetupEntry> bodies;  ///< by body path
   std::string output;                  ///< export: the scene with its fragments, as written
