@@ -1,9 +1,11 @@
 // fissure scene info SCENE [--json]: a scene's bodies (node instances of meshes), their scene
 // materials, sizes and whether each can be fractured (closed or safely repaired), and the
 // materials' texture references, missing ones named.
-// fissure scene fracture SCENE|PROJECT [--assign NAME=MATERIAL…] [--save-project P.json] [--seed S] [--age A] [--up AXIS] [--tets N] [--unit M]
-//   [--bodies K/N] [--strict] [--no-cache|--cache-dir D] [--report R.json] -o OUT: every assigned body fractured, the scene
-//   written back with the fragments as child nodes (scene/scene_fracture.hpp).
+// fissure scene fracture SCENE|PROJECT [--assign NAME=MATERIAL…] [--save-project P.json] [--seed S]
+//   [--age A] [--up AXIS] [--tets N] [--unit M] [--bodies K/N] [--strict] [--no-cache|--cache-dir D]
+//   [--report R.json] [-o OUT]: every assigned body fractured, the scene written back with the
+//   fragments as child nodes (scene/scene_fracture.hpp); a project (scene/scene_project.hpp)
+//   gives the settings the other options override.
 // fissure scene merge SLICE.glb… -o OUT: the slices of a --bodies K/N run joined into the file an
 //   unsliced run writes (scene/scene_merge.hpp).
 // fissure scene demo street|bathroom -o OUT: the demo scenes of assets/scenes/ (scene/demo_scenes.hpp).
@@ -221,7 +223,7 @@ std::pair<int, int> parse_slice(const std::string& text) {
 }
 
 nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& scene, const std::string& output,
-                                        std::uint64_t seed, double seconds) {
+                                   std::uint64_t seed, double seconds) {
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (const SceneBodyReport& r : run.reports) {
     nlohmann::ordered_json b = {{"path", r.path}, {"status", status_name(r.status)}};
