@@ -1,6 +1,6 @@
 // Wavefront OBJ, the strict way: `v` and `f` lines build the surface, `vt` and `usemtl` give its
-// appearance (SurfaceAppearance); every other statement (vn, vp, l, p, o, g, s, mtllib, …) is
-// read past, as assimp did.
+// appearance (SurfaceAppearance), `o` the object each face belongs to (for scenes); every other
+// statement (vn, vp, l, p, g, s, mtllib, …) is read past, as assimp did.
 
 #include "byte_cursor.hpp"
 #include "polygon_soup.hpp"
@@ -11,7 +11,7 @@
 
 namespace fissure::io_detail {
 
-SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
+SurfaceMesh read_obj(std::string_view bytes, const std::string& name, ObjObjects* objects) {
   ByteCursor c(bytes, name);
   PolygonSoup soup(name, 1);
   std::vector<std::int64_t> face, face_uvs;
@@ -51,6 +51,10 @@ SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
         }
       }
       soup.add_uv(c, uv[0], uv[1]);
+    } else if (keyword == "o") {
+      // Its first word names the object (Fissure and Blender write names without blanks).
+      const std::string_view first = c.line_word();
+      soup.use_object(first.substr(0, 200));
     } else if (keyword == "usemtl") {
       const std::string_view name = c.line_word();
       if (name.empty()) c.fail("usemtl names no material");
@@ -93,7 +97,9 @@ SurfaceMesh read_obj(std::string_view bytes, const std::string& name) {
     }
     c.next_line();
   }
-  return soup.finish("an OBJ file");
+  SurfaceMesh surface = soup.finish("an OBJ file");
+  if (objects) *objects = {soup.objects(), soup.triangle_objects()};
+  return surface;
 }
 
 }  // namespace fissure::io_detail

@@ -53,6 +53,12 @@ void PolygonSoup::use_material(std::string_view name) {
   m_has_appearance = true;
 }
 
+void PolygonSoup::use_object(std::string_view name) {
+  const auto it = std::find(m_objects.begin(), m_objects.end(), name);
+  m_object = static_cast<int>(it - m_objects.begin());
+  if (it == m_objects.end()) m_objects.emplace_back(name);
+}
+
 void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> indices, std::span<const std::int64_t> uv_indices) {
   const std::uint64_t number = ++m_faces_read;
   if (indices.size() < 3) {
@@ -79,6 +85,7 @@ void PolygonSoup::add_face(const ByteCursor& at, std::span<const std::int64_t> i
     const std::size_t first = m_triangles.size();
     triangulate(m_scratch, number);
     if (!uv_indices.empty() || m_has_appearance) record_appearance(first, uv_indices);
+    m_triangle_object.resize(m_triangles.size() / 3, m_object);
   } else {
     m_pending.insert(m_pending.end(), m_scratch.begin(), m_scratch.end());
     m_pending_end.push_back(m_pending.size());
@@ -132,6 +139,7 @@ SurfaceMesh PolygonSoup::finish(const char* format) {
     begin = m_pending_end[k];
   }
   if (m_triangles.empty()) throw InvalidInput(m_name + ": holds no faces (is it really " + std::string(format) + "?)");
+  m_triangle_object.resize(m_triangles.size() / 3, 0);  // pending faces (PLY) have no object
 
   SurfaceMesh surface;
   surface.source_name = m_name;

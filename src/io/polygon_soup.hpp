@@ -52,6 +52,13 @@ public:
   /// The faces added from now on use the material `name` (OBJ's `usemtl`).
   void use_material(std::string_view name);
 
+  /// The faces added from now on belong to the object `name` (OBJ's `o`); faces before the first
+  /// belong to object 0, named "".
+  void use_object(std::string_view name);
+  /// After finish(): the objects' names, and per triangle of the surface its object.
+  const std::vector<std::string>& objects() const { return m_objects; }
+  const std::vector<int>& triangle_objects() const { return m_triangle_object; }
+
   /// The triangle surface (not yet repaired); source_name is the file's name. Throws
   /// InvalidInput when no face was read (`format`, e.g. "an OBJ file", completes the message).
   SurfaceMesh finish(const char* format);
@@ -80,6 +87,9 @@ private:
   std::vector<int> m_triangle_material;     // 1 per triangle, only once a material is used
   std::vector<std::string> m_materials{"surface"};
   int m_material = 0;
+  std::vector<int> m_triangle_object;       // 1 per triangle
+  std::vector<std::string> m_objects{""};
+  int m_object = 0;
   bool m_has_appearance = false;
   bool m_has_uvs = false;
 };

@@ -4,13 +4,17 @@
 #include "byte_cursor.hpp"
 #include "surface_readers.hpp"
 
+#include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/base/memory.hpp"
 
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <utility>
 
 namespace fissure {
@@ -182,8 +186,8 @@ ImportedScene import_simple(const fs::path& path, const std::string& format) {
   ImportedScene out;
   out.source = path.string();
   out.format = format;
-  // Blender writes OBJ with +Y up; STL, PLY and OFF come mostly from CAD and scanners, +Z up.
-  out.up = format == "obj" ? Eigen::Vector3d::UnitY() : Eigen::Vector3d::UnitZ();
+  // STL, PLY and OFF come mostly from CAD and scanners, +Z up.
+  out.up = Eigen::Vector3d::UnitZ();
   SceneMesh mesh;
   mesh.name = path.stem().string();
   mesh.vertices = surface.vertices;
@@ -205,6 +209,101 @@ ImportedScene import_simple(const fs::path& path, const std::string& format) {
   return out;
 }
 
+// OBJ: a node per object (`o NAME`, in the order of their first faces) under a root named after
+// the file, each holding one mesh per material its faces use (as assimp splits glTF and FBX
+// meshes), with per-vertex texture coordinates when the file has them. A file of one object (or
+// none) is one node named after the file, as the other simple formats. OBJ has no hierarchy and no
+// transforms: every node's transform is the identity.
+ImportedScene import_obj(const fs::path& path) {
+  const std::string name = path.string();
+  io_detail::check_input_file(path);
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
+  io_detail::ObjObjects objects;
+  const SurfaceMesh surface = io_detail::read_obj(read_file(path), name, &objects);
+  const SurfaceAppearance& look = surface.appearance;
+  ImportedScene out;
+  out.source = name;
+  out.format = "obj";
+  out.up = Eigen::Vector3d::UnitY();  // as Blender writes OBJ
+  std::vector<int> scene_material(look.materials.size(), -1);
+  for (std::size_t m = 0; m < look.materials.size(); ++m) {
+    if (look.materials[m].name.empty()) continue;
+    scene_material[m] = static_cast<int>(out.materials.size());
+    out.materials.push_back({look.materials[m].name, look.materials[m].colour, {}});
+  }
+  const Eigen::Index triangles = surface.faces.rows();
+  const auto material_of = [&](Eigen::Index t) {
+    return look.material.empty() ? -1 : scene_material[static_cast<std::size_t>(look.material[static_cast<std::size_t>(t)])];
+  };
+  // Objects in the order of their first faces; per object, its materials in the order of first use.
+  std::vector<int> object_order;
+  std::map<int, std::vector<int>> materials_of;
+  for (Eigen::Index t = 0; t < triangles; ++t) {
+    const int o = objects.triangle_object[static_cast<std::size_t>(t)];
+    if (!materials_of.count(o)) object_order.push_back(o);
+    std::vector<int>& used = materials_of[o];
+    if (std::find(used.begin(), used.end(), material_of(t)) == used.end()) used.push_back(material_of(t));
+  }
+  const bool one_node = object_order.size() == 1;
+  const std::string stem = path.stem().string();
+  SceneNode root;
+  root.name = stem;
+  out.nodes.push_back(root);
+  const bool has_uvs = look.uvs.rows() > 0;
+  for (const int o : object_order) {
+    int node = 0;
+    if (!one_node) {
+      SceneNode child;
+      child.name = objects.names[static_cast<std::size_t>(o)].empty() ? stem : objects.names[static_cast<std::size_t>(o)];
+      child.parent = 0;
+      node = static_cast<int>(out.nodes.size());
+      out.nodes.push_back(child);
+    }
+    const std::vector<int>& used = materials_of[o];
+    for (const int material : used) {
+      // The mesh: this object's triangles of this material, its vertices renumbered; a vertex
+      // used with two texture coordinates becomes two vertices.
+      SceneMesh mesh;
+      mesh.name = out.nodes[static_cast<std::size_t>(node)].name;
+      if (used.size() > 1 && material >= 0) mesh.name += "-" + out.materials[static_cast<std::size_t>(material)].name;
+      mesh.material = material;
+      std::map<std::tuple<int, double, double>, int> index;
+      std::vector<Eigen::Vector3d> vertices;
+      std::vector<Eigen::Vector2d> uvs;
+      std::vector<Eigen::Vector3i> faces;
+      for (Eigen::Index t = 0; t < triangles; ++t) {
+        if (objects.triangle_object[static_cast<std::size_t>(t)] != o || material_of(t) != material) continue;
+        Eigen::Vector3i face;
+        for (int k = 0; k < 3; ++k) {
+          const int v = surface.faces(t, k);
+          const Eigen::Vector2d uv = has_uvs ? Eigen::Vector2d(look.uvs(t, 2 * k), look.uvs(t, 2 * k + 1)) : Eigen::Vector2d::Zero();
+          const auto [it, inserted] = index.try_emplace({v, uv.x(), uv.y()}, static_cast<int>(vertices.size()));
+          if (inserted) {
+            vertices.push_back(surface.vertices.row(v).transpose());
+            uvs.push_back(uv);
+          }
+          face[k] = it->second;
+        }
+        faces.push_back(face);
+      }
+      mesh.vertices.resize(static_cast<Eigen::Index>(vertices.size()), 3);
+      for (std::size_t v = 0; v < vertices.size(); ++v) mesh.vertices.row(static_cast<Eigen::Index>(v)) = vertices[v].transpose();
+      if (has_uvs) {
+        mesh.uvs.resize(static_cast<Eigen::Index>(uvs.size()), 2);
+        for (std::size_t v = 0; v < uvs.size(); ++v) mesh.uvs.row(static_cast<Eigen::Index>(v)) = uvs[v].transpose();
+      }
+      mesh.triangles.resize(static_cast<Eigen::Index>(faces.size()), 3);
+      for (std::size_t f = 0; f < faces.size(); ++f) mesh.triangles.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+      out.nodes[static_cast<std::size_t>(node)].meshes.push_back(static_cast<int>(out.meshes.size()));
+      out.meshes.push_back(std::move(mesh));
+    }
+  }
+  assign_paths(out);
+  return out;
+}
+
 }  // namespace
 
 ImportedScene import_scene(const fs::path& path) {
@@ -212,7 +311,8 @@ ImportedScene import_scene(const fs::path& path) {
   const std::string ext = io_detail::lower_ascii(path.extension().string());
   const std::string format = ext.empty() ? std::string() : ext.substr(1);
   if (format == "gltf" || format == "glb" || format == "fbx") return import_with_assimp(path, format);
-  if (format == "obj" || format == "ply" || format == "stl" || format == "off") return import_simple(path, format);
+  if (format == "obj") return import_obj(path);
+  if (format == "ply" || format == "stl" || format == "off") return import_simple(path, format);
   throw IoError(path.string() + ": unsupported scene format '" + ext.substr(0, 20) +
                 "' (Fissure reads glTF, GLB, FBX, OBJ, PLY, STL and OFF scenes)");
 }

@@ -15,12 +15,19 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace fissure::io_detail {
 
 /// Wavefront OBJ: `v` and `f` lines (`f 1/2/3 …`, negative indices count back from the last
 /// vertex), and `vt` and `usemtl` as the appearance; points, lines, normals and groups are ignored.
-SurfaceMesh read_obj(std::string_view bytes, const std::string& name);
+/// Per triangle of an OBJ surface, the object (`o NAME`) it belongs to: names[0] is "" (the
+/// faces before the first `o`).
+struct ObjObjects {
+  std::vector<std::string> names;
+  std::vector<int> triangle_object;
+};
+SurfaceMesh read_obj(std::string_view bytes, const std::string& name, ObjObjects* objects = nullptr);
 
 /// Stanford PLY 1.0, `ascii`, `binary_little_endian` or `binary_big_endian`: the `vertex`
 /// element's x, y, z (and texture coordinates s, t / u, v / texture_u, texture_v, kept as the

@@ -4,6 +4,7 @@
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 
 #include "surface_files.hpp"
@@ -111,6 +112,63 @@ TEST(SceneImport, SimpleFormatsAreOneNodeWithTheirConventionalUp) {
   ASSERT_EQ(scene_bodies(obj).size(), 1u);
   EXPECT_EQ(obj.meshes[0].triangles.rows(), 12);
   EXPECT_EQ(import_scene(dir / "box.stl").up, Eigen::Vector3d::UnitZ());
+}
+
+// OBJ objects are nodes: `o` starts one, each holds a mesh per material its faces use, with its
+// own vertices and the file's texture coordinates; and a scene Fissure writes as OBJ reads back
+// with a node per part.
+TEST(SceneImport, ObjObjectsAreNodesWithAMeshPerMaterial) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-obj-objects");
+  // Two unit squares side by side (two triangles each) as object "left" (material a, uvs) and
+  // object "right" (one triangle each of materials a and b).
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+      "o left\nusemtl a\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+      "o right\nf 2 5 6\nusemtl b\nf 2 6 3\n";
+  test::write_test_file(dir / "yard.obj", obj);
+  const ImportedScene scene = import_scene(dir / "yard.obj");
+  ASSERT_EQ(scene.nodes.size(), 3u);
+  EXPECT_EQ(scene.nodes[0].path, "/yard");
+  EXPECT_EQ(scene.nodes[1].path, "/yard/left");
+  EXPECT_EQ(scene.nodes[2].path, "/yard/right");
+  ASSERT_EQ(scene.materials.size(), 2u);
+  ASSERT_EQ(scene.nodes[1].meshes.size(), 1u);
+  const SceneMesh& left = scene.meshes[static_cast<std::size_t>(scene.nodes[1].meshes[0])];
+  EXPECT_EQ(left.vertices.rows(), 4);  // its own four corners, not the file's six
+  EXPECT_EQ(left.triangles.rows(), 2);
+  ASSERT_EQ(left.uvs.rows(), 4);
+  EXPECT_EQ(scene.materials[static_cast<std::size_t>(left.material)].name, "a");
+  // The uv of the corner at (1, 1, 0) is the file's (1, 1).
+  for (Eigen::Index v = 0; v < 4; ++v)
+    if (left.vertices.row(v) == Eigen::RowVector3d(1, 1, 0)) EXPECT_EQ(left.uvs.row(v), Eigen::RowVector2d(1, 1));
+  ASSERT_EQ(scene.nodes[2].meshes.size(), 2u);  // materials a and b
+  std::vector<std::string> right_materials;
+  for (int m : scene.nodes[2].meshes) {
+    EXPECT_EQ(scene.meshes[static_cast<std::size_t>(m)].triangles.rows(), 1);
+    right_materials.push_back(scene.materials[static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(m)].material)].name);
+  }
+  EXPECT_EQ(right_materials, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(scene_bodies(scene).size(), 2u);
+
+  // Fissure's own OBJ of a two-part scene: a node per part, named as the parts.
+  ExportScene two;
+  two.materials = {{"stone", Eigen::Vector3d::Constant(0.5), {}}};
+  for (const char* name : {"slab_a", "slab_b"}) {
+    ExportPart p;
+    p.name = name;
+    p.vertices = Eigen::MatrixX3d(3, 3);
+    p.vertices << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+    p.triangles = Eigen::MatrixX3i(1, 3);
+    p.triangles << 0, 1, 2;
+    p.triangle_material = {0};
+    two.parts.push_back(p);
+  }
+  write_scene(dir / "two.obj", two);
+  const ImportedScene back = import_scene(dir / "two.obj");
+  std::vector<std::string> paths;
+  for (const SceneBody& b : scene_bodies(back)) paths.push_back(b.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{"/two/slab_a", "/two/slab_b"}));
 }
 
 TEST(SceneImport, WrongFilesAreNamed) {

@@ -2,7 +2,9 @@
 /// Scene import (issue 13): a file's node hierarchy, transforms, mesh instances, scene material
 /// names and texture references, for the scene module to find its bodies in. glTF, GLB and FBX
 /// through assimp (checked as import_surface() checks them: surface_import.hpp); OBJ, PLY, STL and
-/// OFF, which have no hierarchy, through Fissure's own readers as one node holding one mesh.
+/// OFF, which have no hierarchy, through Fissure's own readers: an OBJ of several objects (`o`)
+/// as a root named after the file with a node per object, holding a mesh per material; any
+/// other file as one node holding one mesh.
 ///
 /// A **body** is a node instance of its mesh: two nodes sharing one mesh are two bodies (they break
 /// differently). Importers split a mesh by material (a glTF mesh's primitives, an FBX model's
