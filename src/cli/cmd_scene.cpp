@@ -236,6 +236,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& 
       b["fragments"] = r.fragments;
       b["tets"] = r.tets;
       b["mesh"] = r.mesh_cached ? "cached" : "made";
+      b["stress"] = r.stress_cached ? "cached" : "solved";
       b["loads"] = r.loads;
       b["seconds"] = {{"meshing", r.seconds.meshing},
                       {"preparation", r.seconds.preparation},

@@ -258,6 +258,10 @@ Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& b) const {
 
 int SparseCholesky::rows() const { return m_impl->n; }
 
+long sparse_cholesky_version() {
+  return 1000000L * CHOLMOD_MAIN_VERSION + 1000L * CHOLMOD_SUB_VERSION + CHOLMOD_SUBSUB_VERSION;
+}
+
 int SparseCholesky::failed_column() const { return m_impl->failed_column; }
 
 long SparseCholesky::factor_nonzeros() const {

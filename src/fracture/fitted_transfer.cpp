@@ -12,9 +12,13 @@
 namespace fissure {
 
 double reference_stress_per_newton(const PreparedBody& body) {
-  const TetMesh& mesh = body.mesh();
-  const LoadSpec patch = default_load(mesh, body.scenario().up, 1.0, body.scenario().patch_radius);
-  const StressField stress = body.stress_of_forces(assemble_load(mesh, patch));
+  return reference_stress_per_newton(body.mesh(), body.scenario(),
+                                     [&body](const Eigen::VectorXd& f) { return body.stress_of_forces(f); });
+}
+
+double reference_stress_per_newton(const TetMesh& mesh, const FractureScenario& scenario, const StressOfForces& solve) {
+  const LoadSpec patch = default_load(mesh, scenario.up.normalized(), 1.0, scenario.patch_radius);
+  const StressField stress = solve(assemble_load(mesh, patch));
   Eigen::VectorXd lambda;
   max_principal_of(stress, lambda);
   const Eigen::VectorXd& volumes = mesh.volumes();
@@ -55,10 +59,16 @@ FractureParams scale_lengths(const FractureParams& params, double s) {
 }
 
 double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const PreparedBody& body) {
+  return fitted_load_force(fit, params, body.mesh(), body.scenario(),
+                           [&body](const Eigen::VectorXd& f) { return body.stress_of_forces(f); });
+}
+
+double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const TetMesh& mesh,
+                         const FractureScenario& scenario, const StressOfForces& solve) {
   if (fit.load_reference_stress > 0.0) {
-    return params.load_factor * fit.load_reference_stress / reference_stress_per_newton(body);
+    return params.load_factor * fit.load_reference_stress / reference_stress_per_newton(mesh, scenario, solve);
   }
-  return params.load_factor * params.density * body.mesh().total_volume() * kStandardGravity;
+  return params.load_factor * params.density * mesh.total_volume() * kStandardGravity;
 }
 
 FractureParams fitted_params_on(const MaterialFit& fit, const FractureParams& params, const TetMesh& mesh,

@@ -121,6 +121,25 @@ std::vector<int> default_support_dofs(const TetMesh& mesh, const Eigen::Vector3d
   return dofs;
 }
 
+std::vector<int> scenario_fixed_dofs(const TetMesh& mesh, const FractureScenario& scenario) {
+  if (scenario.free_body) return {};
+  if (!scenario.supports.empty()) return resolve_supports(mesh, scenario.supports);
+  return default_support_dofs(mesh, scenario.up);
+}
+
+ScenarioLoads scenario_loads(const TetMesh& mesh, const FractureScenario& scenario) {
+  ScenarioLoads out;
+  if (scenario.loads.empty()) {
+    out.loads = {default_load(mesh, scenario.up, 1.0, scenario.patch_radius)};
+    out.default_load = true;
+  } else {
+    out.loads = scenario.loads;
+  }
+  out.unit_forces = Eigen::VectorXd::Zero(3 * mesh.node_count());
+  for (const LoadSpec& load : out.loads) out.unit_forces += assemble_load(mesh, load);
+  return out;
+}
+
 LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius) {
   const Frame f = frame_of(mesh, up);
   const BoundaryFace* best = nullptr;

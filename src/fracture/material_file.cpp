@@ -263,7 +263,12 @@ FractureMaterial material_from_json(const std::string& text, const std::string& 
 }
 
 void save_material(const std::filesystem::path& path, const FractureMaterial& material) {
-  write_file_atomically(path, material_to_json(material));
+  const std::string text = material_to_json(material);
+  // Read back before writing: material_to_json checks the parameters, the reader every key of
+  // a fit record too (a fit with no resolution rule or empty exemplar statistics), and a file
+  // Fissure writes must be one it reads.
+  material_from_json(text, path.string());
+  write_file_atomically(path, text);
 }
 
 FractureMaterial load_material(const std::filesystem::path& path) {

@@ -1,19 +1,8 @@
 #include "fissure/fracture/prepared_body.hpp"
 
 #include "fissure/base/error.hpp"
-#include "fissure/fem/load.hpp"
 
 namespace fissure {
-namespace {
-
-std::vector<int> fixed_dofs_of(const TetMesh& mesh, const FractureScenario& scenario) {
-  if (scenario.free_body) return {};
-  if (!scenario.supports.empty()) return resolve_supports(mesh, scenario.supports);
-  return default_support_dofs(mesh, scenario.up);
-}
-
-}  // namespace
-
 PreparedBody::PreparedBody(std::shared_ptr<const TetMesh> mesh, const ElasticMaterial& material,
                            const FractureScenario& scenario, int threads)
     : m_scenario(scenario),
@@ -23,15 +12,11 @@ PreparedBody::PreparedBody(std::shared_ptr<const TetMesh> mesh, const ElasticMat
   if (!(m_scenario.up.norm() > 0.0)) throw InvalidInput("the up direction is zero");
   m_scenario.up.normalize();
   if (m_scenario.free_body && !m_scenario.supports.empty()) throw InvalidInput("--free and --fix exclude each other");
-  m_solver = std::make_unique<StaticSolver>(m_body, fixed_dofs_of(*mesh, m_scenario));
-  m_unit_load = Eigen::VectorXd::Zero(3 * mesh->node_count());
-  if (m_scenario.loads.empty()) {
-    m_loads = {fissure::default_load(*mesh, m_scenario.up, 1.0, m_scenario.patch_radius)};
-    m_default_load = true;
-  } else {
-    m_loads = m_scenario.loads;
-  }
-  for (const LoadSpec& load : m_loads) m_unit_load += assemble_load(*mesh, load);
+  m_solver = std::make_unique<StaticSolver>(m_body, scenario_fixed_dofs(*mesh, m_scenario));
+  ScenarioLoads loads = scenario_loads(*mesh, m_scenario);
+  m_loads = std::move(loads.loads);
+  m_default_load = loads.default_load;
+  m_unit_load = std::move(loads.unit_forces);
 }
 
 Eigen::VectorXd PreparedBody::load_vector(const FractureParams& params) const {

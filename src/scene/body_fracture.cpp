@@ -3,7 +3,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/fracture/fitted_transfer.hpp"
 #include "fissure/fracture/material_fit.hpp"
-#include "fissure/fracture/prepared_body.hpp"
+#include "fissure/fracture/static_stress_cache.hpp"
 #include "fissure/fracture/resistance_field.hpp"
 #include "fissure/fracture/simulation.hpp"
 
@@ -20,7 +20,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }  // namespace
 
 BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threads, const Mesher& mesher,
-                                   const CancelToken* cancel) {
+                                   const CancelToken* cancel, const BodyFieldCache& field_cache) {
   BodyFracture out;
   const std::optional<MaterialFit>& fit = request.material.fit;
   FractureParams params = request.material.params;
@@ -55,17 +55,26 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   // fit's stress takes the prepared body to measure.
   const bool fitted_load_rule = fit && scenario.loads.empty();
   if (fitted_load_rule) scenario.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, 1.0, request.seed)};
-  const PreparedBody prepared(mesh, params.elastic(), scenario, threads);
-  StressField initial = prepared.initial_stress(params);
-  out.loads = prepared.loads();
+  // σ⁰ solved on the body's supports, or read from the cache without building any FEM. The
+  // forces are those PreparedBody::initial_stress() solves for, so a cached run, a cold one and
+  // `fissure fracture` give the same field.
+  CachedStaticStress statics(mesh, params.elastic(), scenario, field_cache.directory, field_cache.max_bytes, threads);
+  const ScenarioLoads loads = scenario_loads(*mesh, scenario);
+  const double default_force = params.load_factor * (params.density * mesh->total_volume()) * kStandardGravity;
+  StressField initial = statics.stress_of_forces(loads.default_load ? Eigen::VectorXd(default_force * loads.unit_forces)
+                                                                     : loads.unit_forces);
+  out.loads = loads.loads;
   if (fitted_load_rule) {
-    const double force = fitted_load_force(*fit, params, prepared);
+    const double force = fitted_load_force(*fit, params, *mesh, scenario,
+                                           [&statics](const Eigen::VectorXd& f) { return statics.stress_of_forces(f); });
     initial *= force;
     out.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, force, request.seed)};
-  } else if (prepared.default_load()) {
-    out.loads = {default_load(*mesh, request.up, params.load_factor * prepared.fracture_body().mass(params.density) * kStandardGravity,
-                              scenario.patch_radius)};
+  } else if (loads.default_load) {
+    out.loads = {default_load(*mesh, request.up, default_force, scenario.patch_radius)};
   }
+  const FractureBody& fracture_body = statics.fracture_body();
+  out.stress_cached = statics.solved() == 0;
+  out.cache_warning = statics.warning();
   const Eigen::VectorXd resistance = draw_resistance(mesh->centroids(), params, request.seed, threads);
   out.seconds.preparation = seconds_since(clock);
   if (cancel) cancel->throw_if_cancelled();
@@ -73,7 +82,7 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   clock = std::chrono::steady_clock::now();
   SimulationOptions options;
   options.cancel = cancel;
-  out.result = simulate_fracture(prepared.fracture_body(), params, initial, resistance, request.seed, options);
+  out.result = simulate_fracture(fracture_body, params, initial, resistance, request.seed, options);
   out.seconds.simulation = seconds_since(clock);
 
   clock = std::chrono::steady_clock::now();

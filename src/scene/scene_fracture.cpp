@@ -212,8 +212,13 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
           return std::move(r.mesh);
         };
       }
-      done_body.fracture = fracture_body_surface(request, 1, mesher, options.cancel);
+      done_body.fracture = fracture_body_surface(request, 1, mesher, options.cancel, {options.cache_dir, cache_cap});
       const BodyFracture& result = done_body.fracture;
+      report.stress_cached = result.stress_cached;
+      if (!result.cache_warning.empty()) {
+        const std::lock_guard<std::mutex> lock(done_mutex);
+        cache_warning = result.cache_warning;
+      }
       report.status = SceneBodyReport::Status::Fractured;
       report.fragments = static_cast<int>(result.fragments.size());
       report.tets = result.tets;

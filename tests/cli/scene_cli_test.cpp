@@ -119,25 +119,28 @@ TEST(SceneCli, FractureTheStreetInSlicesAndMergeThem) {
   EXPECT_FALSE(fs::exists(dir / "m.glb"));
 }
 
-// The tet mesh cache: a cold run makes and stores every body's mesh, a warm run reads them all,
-// and both write the bytes a run without the cache writes.
-TEST(SceneCli, AWarmCacheMeshesNothingAndChangesNoByte) {
+// The caches: a cold run makes and stores every body's tet mesh and static stress, a warm run
+// reads them all (no mesher, no FEM), and both write the bytes a run without the cache writes.
+TEST(SceneCli, AWarmCacheMeshesAndSolvesNothingAndChangesNoByte) {
   const fs::path dir = test::fresh_temp_dir("scene-cli-cache");
   const std::string street = (dir / "street.glb").string();
   ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street).exit_code, 0);
   const std::string run = fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 -q";
   const std::string cache = " --cache-dir " + (dir / "cache").string();
-  std::map<std::string, int> meshes;  // "made" / "cached" → bodies, over both runs
+  std::map<std::string, int> seen;  // "run mesh made", "run stress cached", … → bodies
   for (const char* name : {"cold", "warm"}) {
     const auto r = test::run_command(run + cache + " --report " + (dir / name).string() + ".json -o " + (dir / name).string() + ".glb");
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const nlohmann::json report = nlohmann::json::parse(read_file(dir / (std::string(name) + ".json")));
     for (const auto& b : report["bodies"]) {
-      if (b["status"] == "fractured") ++meshes[std::string(name) + " " + b["mesh"].get<std::string>()];
+      if (b["status"] != "fractured") continue;
+      ++seen[std::string(name) + " mesh " + b["mesh"].get<std::string>()];
+      ++seen[std::string(name) + " stress " + b["stress"].get<std::string>()];
     }
   }
-  const std::map<std::string, int> expected{{"cold made", 2}, {"warm cached", 2}};
-  EXPECT_EQ(meshes, expected) << "a body meshed when it should have been cached, or the reverse";
+  const std::map<std::string, int> expected{
+      {"cold mesh made", 2}, {"cold stress solved", 2}, {"warm mesh cached", 2}, {"warm stress cached", 2}};
+  EXPECT_EQ(seen, expected) << "a body meshed or solved when it should have been cached, or the reverse";
   const auto r = test::run_command(run + " --no-cache -o " + (dir / "uncached.glb").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "warm.glb"));

@@ -265,6 +265,17 @@ TEST(MaterialFile, WritesAtomicallyAndNeverWritesAnInvalidMaterial) {
   bad.name.clear();
   EXPECT_THROW(save_material(path, bad), InvalidInput);
   EXPECT_EQ(read_file(path), before);
+  // A fit record the reader would refuse (no resolution rule) is refused the same way.
+  bad = fitted_sample();
+  bad.name = "slate";
+  bad.fit->tets_per_fragment = 0;
+  try {
+    save_material(path, bad);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("fit.resolution.tets_per_fragment 0"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(read_file(path), before);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // no temporary left
   // An unwritable place and a missing file are IoErrors naming the file.
   try {

@@ -8,6 +8,9 @@
 //    result does not depend on the thread count;
 //  - bad assignments are named and the rest still runs.
 #include "fissure/base/error.hpp"
+#include "fissure/fracture/fitted_transfer.hpp"
+#include "fissure/fracture/material_file.hpp"
+#include "fissure/fracture/material_fit.hpp"
 #include "fissure/io/gltf_reader.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
@@ -22,6 +25,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <map>
 #include <set>
@@ -175,6 +180,105 @@ TEST(SceneFracture, AssignedBodiesBreakIntoClosedFragmentsThatKeepTheirVolume) {
   for (const auto& [slab, volume] : volume_by_slab) EXPECT_NEAR(volume, 0.018, 0.018 * 1e-5) << slab;
 }
 
+// A fitted material with a posterior (material_fit.hpp): every slab draws its own parameters
+// from it and takes the fit's load rule (a patch at a drawn grid cell, pushed with the force that
+// keeps the fit's stress, found by a second static solve). With the caches warm no slab is meshed
+// or solved again (no FEM is built), and the fragments are the bytes of a cold and of an uncached
+// run.
+TEST(SceneFracture, AFittedMaterialDrawsPerBodyAndAWarmCacheSolvesNothing) {
+  const fs::path dir = test::fresh_temp_dir("scene_fracture_fitted");
+  const ImportedScene scene = small_street(dir);
+  FractureMaterial material = load_material(find_material("ceramic-tile"));
+  material.name = "fitted-tile";
+  MaterialFit fit;
+  fit.method = "smc";
+  fit.trials = 100;
+  fit.seed = 1;
+  fit.age = material.params.age;
+  fit.body_width = fit.body_height = 0.6;  // the slabs' visible face: the lengths keep their scale
+  fit.body_thickness = 0.05;
+  fit.body_tets = 1500;
+  fit.tets_per_fragment = 100;
+  fit.min_tets = 1000;
+  fit.max_tets = 20000;
+  fit.load_grid = 4;
+  fit.load_inset = 0.2;
+  fit.supports = "rim-rollers";
+  // An exemplar's statistics as a fit records them (not used by a fracture, but a material file
+  // must hold valid ones).
+  fit.exemplar.source = "cracks.png";
+  fit.exemplar.total_area = 1.0;
+  fit.exemplar.fragment_area_hist = Histogram::make(-6.0, 0.0, 24);
+  fit.exemplar.crack_length_hist = Histogram::make(-4.0, 0.0, 16);
+  fit.exemplar.junction_density_hist = Histogram::make(0.0, 5.0, 20);
+  fit.exemplar.junction_angle_hist = Histogram::make(0.0, 360.0, 36);
+  // The fit body's reference stress: the first slab's, for l·m·g.
+  const std::vector<SceneBody> bodies = scene_bodies(scene);
+  const auto slab = std::find_if(bodies.begin(), bodies.end(), [](const SceneBody& b) {
+    return b.path.find("/slab_") != std::string::npos;
+  });
+  ASSERT_NE(slab, bodies.end());
+  TetrahedralizeOptions mesh_options;
+  mesh_options.target_tets = fit.body_tets;
+  const auto mesh = std::make_shared<const TetMesh>(tetrahedralize(check_scene_body(scene, *slab).world, mesh_options));
+  FractureScenario held;
+  held.up = scene.up;
+  const PreparedBody fit_body(mesh, material.params.elastic(), held);
+  fit.load_reference_stress =
+      reference_stress_per_newton(fit_body) * material.params.density * mesh->total_volume() * kStandardGravity;
+  for (const double factor : {0.8, 1.0, 1.25}) {
+    std::array<double, 5> sample{};
+    for (std::size_t k = 0; k < 5; ++k) {
+      sample[k] = factor * parameter_value(material.params, static_cast<std::size_t>(find_fracture_parameter(table3_priors()[k].name)));
+    }
+    fit.samples.push_back(sample);
+    fit.weights.push_back(1.0 / 3.0);
+  }
+  fit.posterior_mean = fit.samples[1];
+  material.fit = fit;
+  save_material(dir / "fitted.json", material);
+
+  SceneFractureOptions options;
+  options.assignments.by_material["concrete"] = (dir / "fitted.json").string();
+  options.cache_dir = dir / "cache";
+  options.threads = 2;
+  const SceneFracture cold = fracture_scene(scene, options);
+  const SceneFracture warm = fracture_scene(scene, options);
+  options.cache_dir.clear();
+  const SceneFracture uncached = fracture_scene(scene, options);
+
+  std::set<double> stress_rates;
+  int slabs = 0;
+  for (std::size_t b = 0; b < cold.bodies.size(); ++b) {
+    if (cold.reports[b].status == SceneBodyReport::Status::Unassigned) continue;
+    const std::string& path = cold.reports[b].path;
+    ASSERT_EQ(cold.reports[b].status, SceneBodyReport::Status::Fractured) << path << ": " << cold.reports[b].reason;
+    ++slabs;
+    EXPECT_FALSE(cold.reports[b].mesh_cached || cold.reports[b].stress_cached) << path;
+    EXPECT_TRUE(warm.reports[b].mesh_cached) << path;
+    EXPECT_TRUE(warm.reports[b].stress_cached) << path << ": a warm run built the FEM";
+    EXPECT_FALSE(uncached.reports[b].mesh_cached || uncached.reports[b].stress_cached) << path;
+    const BodyFracture& c = cold.results[b]->fracture;
+    EXPECT_TRUE(c.posterior_draw) << path;
+    // The body's draw, from its own seed.
+    const FractureParams drawn = draw_from_posterior(fit, material.params, cold.reports[b].seed);
+    EXPECT_EQ(c.params.stress_rate, drawn.stress_rate) << path;
+    stress_rates.insert(c.params.stress_rate);
+    EXPECT_GT(c.fragments.size(), 1u) << path << ": the fitted load broke nothing";
+    for (const SceneFracture* other : {&warm, &uncached}) {
+      const BodyFracture& o = other->results[b]->fracture;
+      ASSERT_EQ(o.fragments.size(), c.fragments.size()) << path;
+      for (std::size_t k = 0; k < c.fragments.size(); ++k) {
+        EXPECT_TRUE(o.fragments[k].vertices == c.fragments[k].vertices) << path << " fragment " << k;
+      }
+      ASSERT_EQ(o.loads.size(), 1u);
+      EXPECT_EQ(o.loads[0].force, c.loads[0].force) << path;
+    }
+  }
+  EXPECT_EQ(slabs, 3);
+  EXPECT_GE(stress_rates.size(), 2u) << "every slab drew the same posterior sample";
+}
+
 // --unit: the street modelled 16× larger (1/16 m per unit: a power of two, so every coordinate
 // scales exactly and the bodies in metres are the same bits) breaks exactly as the metre street,
 // and its fragments come back in its own units: 16× the metre street's, node for node.
@@ -213,8 +317,9 @@ TEST(SceneFracture, AUnitScalesTheBodiesToMetresAndTheFragmentsBack) {
     ASSERT_EQ(em.parts[p].name, eu.parts[p].name);
     EXPECT_TRUE(eu.parts[p].translation.isApprox(16.0 * em.parts[p].translation, 1e-12)) << em.parts[p].name;
     ASSERT_EQ(em.parts[p].vertices.rows(), eu.parts[p].vertices.rows());
-    if (em.parts[p].vertices.rows() > 0)
+    if (em.parts[p].vertices.rows() > 0) {
       EXPECT_LT((eu.parts[p].vertices - 16.0 * em.parts[p].vertices).cwiseAbs().maxCoeff(), 1e-12 * 16.0) << em.parts[p].name;
+    }
     fragments += em.parts[p].name.rfind("fragment_", 0) == 0 ? 1 : 0;
   }
   EXPECT_GT(fragments, 4);

@@ -47,6 +47,10 @@ private:
   std::unique_ptr<Impl> m_impl;
 };
 
+/// The CHOLMOD version the library was built against (major·10⁶ + minor·10³ + patch): caches of
+/// solved fields key on it, since another factorisation rounds differently.
+long sparse_cholesky_version();
+
 /// Holds the libraries CHOLMOD calls to fissure::thread_count() (base/thread_count.hpp): at one
 /// thread, OpenBLAS's worker pool is ended and CHOLMOD's OpenMP regions run on the calling thread,
 /// so the process adds no thread. At two or more CHOLMOD keeps its fixed OpenMP team of 4

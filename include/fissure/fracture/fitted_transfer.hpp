@@ -19,13 +19,21 @@
 #include "fissure/fracture/material_fit.hpp"
 #include "fissure/fracture/prepared_body.hpp"
 
+#include <functional>
+
 namespace fissure {
+
+/// How a caller solves for the stress of nodal forces on a body's supports: a PreparedBody's
+/// stress_of_forces (recovered), or a cache in front of one (static_stress_cache.hpp).
+using StressOfForces = std::function<StressField(const Eigen::VectorXd& forces)>;
 
 /// The reference stress of a body per newton of load (Pa/N): the volume-weighted mean of the
 /// positive max principal stress (recovered) under the default patch at the centre of the top
 /// face pushing with 1 N, on the body's supports. A mean, not a peak: the peak under a patch
 /// grows as the mesh refines; the mean converges. One static solve on the prepared factor.
 double reference_stress_per_newton(const PreparedBody& body);
+/// The same, solving through `solve` on `mesh` with `scenario`'s up and patch radius.
+double reference_stress_per_newton(const TetMesh& mesh, const FractureScenario& scenario, const StressOfForces& solve);
 
 /// s = √(visible_area / fit visible area), 1 when the two agree to 1e-9 (the fit body itself).
 /// Throws InvalidInput when either area is not positive.
@@ -42,5 +50,8 @@ FractureParams fitted_params_on(const MaterialFit& fit, const FractureParams& pa
 /// The force (N) of the fitted load rule on `body`: l · σ_ref,fit / σ_ref,body, or l·m·g (m from
 /// params.density) when the fit predates the reference stress (fit.load_reference_stress = 0).
 double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const PreparedBody& body);
+/// The same, solving through `solve` (only when the fit records a reference stress).
+double fitted_load_force(const MaterialFit& fit, const FractureParams& params, const TetMesh& mesh,
+                         const FractureScenario& scenario, const StressOfForces& solve);
 
 }  // namespace fissure

@@ -39,6 +39,20 @@ struct FractureScenario {
 /// face looking down along −up within 45° (say --free or give --fix).
 std::vector<int> default_support_dofs(const TetMesh& mesh, const Eigen::Vector3d& up);
 
+/// The dofs a scenario holds (sorted): none for a free body, its supports resolved on the mesh,
+/// else the default rim rollers. Throws InvalidInput as resolve_supports() and
+/// default_support_dofs() do.
+std::vector<int> scenario_fixed_dofs(const TetMesh& mesh, const FractureScenario& scenario);
+
+/// The loads a scenario applies: its own as given, or (none given) the default patch for 1 N,
+/// which a run scales by l·m_body·g.
+struct ScenarioLoads {
+  std::vector<LoadSpec> loads;
+  bool default_load = false;
+  Eigen::VectorXd unit_forces;  ///< their nodal forces summed (3 per node, N)
+};
+ScenarioLoads scenario_loads(const TetMesh& mesh, const FractureScenario& scenario);
+
 /// The default load above for magnitude `force` (N), as a LoadSpec (a ball selection with up as
 /// its reference normal). Throws InvalidInput when no boundary face looks up within 45°.
 LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius = 0.0);

@@ -50,6 +50,8 @@ std::string material_to_json(const FractureMaterial& material);
 FractureMaterial material_from_json(const std::string& text, const std::string& source);
 
 /// Atomic write (base/atomic_file.hpp) / read of a material file; errors as above, naming the file.
+/// save_material() writes only what load_material() reads back: a material with an invalid fit
+/// record gets the reader's error and leaves the file as it was.
 void save_material(const std::filesystem::path& path, const FractureMaterial& material);
 FractureMaterial load_material(const std::filesystem::path& path);
 

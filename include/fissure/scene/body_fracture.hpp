@@ -25,8 +25,10 @@
 #include "fissure/mesh/tetrahedralize.hpp"
 
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace fissure {
@@ -59,6 +61,13 @@ struct BodyFractureRequest {
   int target_tets = 0;                 ///< 0: a fitted material's fit body count, else 6000
 };
 
+/// Where a body's static stress fields are cached (static_stress_cache.hpp, beside the tet meshes);
+/// an empty directory caches nothing.
+struct BodyFieldCache {
+  std::filesystem::path directory;
+  std::uint64_t max_bytes = 0;
+};
+
 struct BodyFracture {
   FractureParams params;               ///< as simulated (drawn, scaled, age set)
   int tets = 0;
@@ -67,6 +76,8 @@ struct BodyFracture {
   bool posterior_draw = false;         ///< the five fitted parameters were drawn from a posterior
   FractureResult result;
   std::vector<FragmentMesh> fragments; ///< world coordinates
+  bool stress_cached = false;          ///< every static field came from the cache: no FEM was built
+  std::string cache_warning;           ///< why a solved field could not be cached (the run goes on)
   struct Seconds {
     double meshing = 0.0, preparation = 0.0, simulation = 0.0, fragments = 0.0;
   } seconds;
@@ -79,6 +90,6 @@ constexpr int kDefaultBodyTets = 6000;
 /// rest on, a load that touches nothing, parameters out of range after the draw), NumericalFailure
 /// from the mesher, Cancelled through `cancel`.
 BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threads = 1, const Mesher& mesher = {},
-                                   const CancelToken* cancel = nullptr);
+                                   const CancelToken* cancel = nullptr, const BodyFieldCache& field_cache = {});
 
 }  // namespace fissure

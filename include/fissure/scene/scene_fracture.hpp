@@ -56,8 +56,9 @@ struct SceneFractureOptions {
   int threads = 1;                        ///< bodies run in parallel, one thread each
   int slice = 1, slices = 1;              ///< K of N, K from 1
   Mesher mesher;                          ///< empty: tetrahedralize(), through the cache below
-  /// Tet meshes are cached here by content (tet_mesh_cache.hpp), so a second run, or a run after
-  /// an edit to other bodies, meshes nothing it has meshed before. Empty: no cache.
+  /// Tet meshes and static stress fields are cached here by content (tet_mesh_cache.hpp,
+  /// static_stress_cache.hpp), so a second run, or a run after an edit to other bodies, meshes
+  /// and solves nothing it has done before. Empty: no cache.
   std::filesystem::path cache_dir;
   std::uint64_t cache_max_bytes = 0;      ///< the cache's cap; 0: default_cache_size_limit()
   const CancelToken* cancel = nullptr;
@@ -78,6 +79,7 @@ struct SceneBodyReport {
   int fragments = 0;                      ///< closed meshes
   int tets = 0;
   bool mesh_cached = false;               ///< its tet mesh came from the cache
+  bool stress_cached = false;             ///< its static stress came from the cache: no FEM built
   std::vector<std::string> loads;         ///< the loads as applied, as `--load` specs (forces in N)
   BodyFracture::Seconds seconds;
 };
