@@ -61,8 +61,6 @@ public:
   /// after the fields, so a cold run does not make it twice).
   const FractureBody& fracture_body();
 
-  /// The fixed dofs of the scenario on the mesh (scenario_fixed_dofs()).
-  const std::vector<int>& fixed_dofs() const { return m_fixed_dofs; }
   /// Fields read from the cache and fields solved, so far.
   int loaded() const { return m_loaded; }
   int solved() const { return m_solved; }
