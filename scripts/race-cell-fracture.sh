@@ -14,19 +14,9 @@
 #
 # Usage: scripts/race-cell-fracture.sh [SEED]   (installs Blender through apt-get if missing)
 set -euo pipefail
-root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build_dir=${FISSURE_BUILD_DIR:-$root/build}
 seed=${1:-1}
-if ! command -v blender >/dev/null; then
-  echo "race: installing Blender (Debian's package)" >&2
-  sudo_cmd=(); [[ $(id -u) == 0 ]] || sudo_cmd=(sudo)
-  "${sudo_cmd[@]}" apt-get install -y --no-install-recommends blender python3-numpy >&2
-fi
-"$root/scripts/build.sh" >/dev/null
-out_dir=$build_dir/bench-results
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-mkdir -p "$out_dir"
+# shellcheck source=race-setup.sh
+source "$(dirname "${BASH_SOURCE[0]}")/race-setup.sh"
 
 now() { date +%s.%N; }
 # The rows: pieces and the Fissure body's tet count (enough elements per piece to shape it).

@@ -6,13 +6,16 @@
 # (-t 0: all cores, as an artist runs it). The points are uniform in the tile, drawn by Python's
 # random.Random(SEED); Cell Fracture's own jitter draws from `random`, seeded the same.
 import json
+import os
 import random
 import sys
 import time
 
 import addon_utils
-import bmesh
 import bpy
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_shards import shard_figures  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 if len(argv) != 2:
@@ -51,27 +54,7 @@ bpy.ops.object.add_fracture_cell_objects(source={"VERT_CHILD"}, source_limit=0, 
 seconds = time.perf_counter() - t0
 
 shards = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
-
-
-def is_closed(bm):
-    # Every edge has exactly two faces, wound consistently (Blender's own predicates).
-    return bool(bm.edges) and all(e.is_manifold and e.is_contiguous for e in bm.edges)
-
-
-# Cell Fracture leaves each cell's faces with their own copies of the seam vertices: as produced,
-# no shard is closed. An artist runs Merge by Distance; `closed` counts the shards closed after
-# it at 1e-6 m (Blender's default is 1e-4), `closed_as_made` before.
-closed = closed_as_made = 0
-volume = 0.0
-for o in shards:
-    bm = bmesh.new()
-    bm.from_mesh(o.data)
-    bm.transform(o.matrix_world)
-    closed_as_made += is_closed(bm)
-    bmesh.ops.remove_doubles(bm, verts=bm.verts, dist=1e-6)
-    closed += is_closed(bm)
-    volume += bm.calc_volume(signed=True)
-    bm.free()
+closed, closed_as_made, volume = shard_figures(shards)
 body = size[0] * size[1] * size[2]
 print("RACE " + json.dumps({"tool": "blender_cell_fracture", "blender": bpy.app.version_string, "seeds": pieces,
                             "seed": seed, "seconds": seconds, "pieces": len(shards), "closed": closed,

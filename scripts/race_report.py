@@ -24,6 +24,16 @@ def ms(b):
     return b["real_time"] * scale
 
 
+def machine_rows(machine):
+    """bench_machine's median rows, named `machine: …`, for a race's table."""
+    rows = []
+    for b in medians(machine["benchmarks"]):
+        row = {k: v for k, v in b.items() if k in ("real_time", "time_unit", "GB_per_s", "working_set_MB", "GFLOPs")}
+        row["name"] = "machine: " + b.get("run_name", b["name"])
+        rows.append(row)
+    return rows
+
+
 def main():
     fissure_json, blender_jsonl, process_jsonl, machine_json, out = sys.argv[1:6]
     fissure = json.load(open(fissure_json))
@@ -52,10 +62,7 @@ def main():
             if p:
                 row["process_speedup"] = cf["process_s"] / p["process_s"]
         rows.append(row)
-    for b in medians(json.load(open(machine_json))["benchmarks"]):
-        row = {k: v for k, v in b.items() if k in ("real_time", "time_unit", "GB_per_s", "working_set_MB", "GFLOPs")}
-        row["name"] = "machine: " + b.get("run_name", b["name"])
-        rows.append(row)
+    rows += machine_rows(json.load(open(machine_json)))
     with open(out, "w") as f:
         json.dump({"context": fissure.get("context", {}), "benchmarks": rows}, f, indent=1)
 

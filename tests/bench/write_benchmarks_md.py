@@ -97,6 +97,23 @@ SECTION_NOTES = {
                                 "labeller's count, which runs ahead of the meshes' on dense patterns). `speedup`: "
                                 "Blender's time / Fissure's. Targets: ≥ 10× at 50 pieces, ≥ 30× at 1000, every piece "
                                 "closed. `machine:` rows are bench_machine's from the same run.",
+    "bench_race_street_cell_fracture": "The street race (issue 13), by scripts/race-street-cell-fracture.sh, both "
+                                       "sides in one run on this machine, whole processes start to exit, medians of 3: "
+                                       "Fissure (`fissure scene fracture assets/scenes/street.glb`, scripts/demo.sh's "
+                                       "assignments, age 12, 2 threads, an empty cache (`cold`) and the cache it filled "
+                                       "(`warm`)) against Blender 3.4 (Debian's `blender`, all cores) importing the same "
+                                       "GLB, giving every body Fissure fractured as many uniform seed points in its "
+                                       "bounding box as Fissure made fragments of it, breaking them all with one Cell "
+                                       "Fracture call (margin 0) and exporting a GLB. `closed`: pieces closed in Blender "
+                                       "(Fissure's after Merge Vertices, by scripts/blender_check_scene.py; Blender's "
+                                       "after Merge by Distance at 1e-6 m, `closed_as_made` before it). `bodies_s`: "
+                                       "Fissure's per-body seconds summed over its threads, split into the shares "
+                                       "`meshing`, `preparation`, `simulation`, `fragments`. `fracture_s`, `import_s`, "
+                                       "`export_s`: Blender's operator, glTF import and export alone. `volume_err`: "
+                                       "|Σ piece volumes − bodies' volume| / bodies' volume. `speedup`: Blender's "
+                                       "process time / Fissure's (Cell Fracture cuts Voronoi cells; Fissure solves the "
+                                       "stress and grows the cracks it drives). `machine:` rows are bench_machine's "
+                                       "from the same run.",
     "bench_msh": "gmsh MSH 4.1 write and read through the gmsh API.",
     "bench_fem": "FEM kernels on the CGAL tile (corner supports, 10 kN on a 5 cm centre patch). Targets at 24K "
                  "tets: assemble K ≤ 50 ms (`AssembleStiffness` reuses the pattern; `FromScratch` includes "
