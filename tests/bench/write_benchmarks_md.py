@@ -79,7 +79,7 @@ SECTION_NOTES = {
                    "`Street/slabs:S/cache:C`: the street demo (S slabs in two rows, a curb, a road; S = 24 is "
                    "assets/scenes/street.glb) read from its GLB, every slab and the curb fractured with the "
                    "bundled concrete at age 12 (scripts/demo.sh), the road untouched, the scene exported and "
-                   "encoded as GLB in memory, with no tet mesh cache (C = 0), a cold one emptied before the run (C = 1: its writes paid) or a warm one filled by an earlier run (C = 2: what a second run of the scene costs; target ≤ 0.25 s per slab on 2 cores); `cached`: bodies whose mesh came from the cache. `per_body_s`: the time per fractured "
+                   "encoded as GLB in memory, with no cache (C = 0), a cold one emptied before the run (C = 1: its writes paid) or a warm one filled by an earlier run (C = 2: tet meshes and static stress fields read back, what a second run of the scene costs; target ≤ 0.25 s per slab on 2 cores); `cached`: bodies whose mesh came from the cache. `per_body_s`: the time per fractured "
                    "body (target ≤ 1 s on 2 cores); `meshing`, `preparation`, `simulation`, `fragments`: shares "
                    "of the bodies' summed seconds; `export_s`: scene_export + GLB. `OneBodyOf/bodies:B`: one "
                    "slab assigned by its node path in a street of B bodies, against B = 1 (target: within 10 %; "
