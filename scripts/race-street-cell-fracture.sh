@@ -54,6 +54,9 @@ echo "race: Blender checks Fissure's export (scripts/blender_check_scene.py)" >&
 blender -b --python "$root/scripts/blender_check_scene.py" -- "$work/fissure-warm.glb" "$scene" 2>/dev/null |
   sed -n 's/^RESULT //p' >"$work/fissure-check.json" || true
 [[ -s $work/fissure-check.json ]] || { echo "race: Blender's check of Fissure's export failed" >&2; exit 1; }
+# A misplaced, open or missing fragment voids the race: its figures would not be of a usable scene.
+python3 -c 'import json,sys; sys.exit(json.load(open(sys.argv[1]))["problems"] != 0)' "$work/fissure-check.json" ||
+  { echo "race: Blender found problems in Fissure's export: $(cat "$work/fissure-check.json")" >&2; exit 1; }
 
 : >"$work/blender.jsonl"
 for r in $(seq "$repetitions"); do

@@ -9,13 +9,12 @@ import json
 import os
 import random
 import sys
-import time
 
 import addon_utils
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from blender_shards import shard_figures  # noqa: E402
+from blender_shards import add_seed_cloud, cell_fracture, shard_figures  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 if len(argv) != 2:
@@ -37,23 +36,8 @@ bpy.ops.object.transform_apply(location=False, rotation=False, scale=True)
 # The seed points: a child mesh of loose vertices (source 'VERT_CHILD').
 rng = random.Random(seed)
 points = [tuple((rng.random() - 0.5) * s for s in size) for _ in range(pieces)]
-cloud = bpy.data.meshes.new("seeds")
-cloud.from_pydata(points, [], [])
-seeds = bpy.data.objects.new("seeds", cloud)
-bpy.context.collection.objects.link(seeds)
-seeds.parent = tile
-
-bpy.ops.object.select_all(action="DESELECT")
-tile.select_set(True)
-bpy.context.view_layer.objects.active = tile
-random.seed(seed)
-before = set(bpy.data.objects)
-t0 = time.perf_counter()
-bpy.ops.object.add_fracture_cell_objects(source={"VERT_CHILD"}, source_limit=0, source_noise=0.0,
-                                         margin=0.0, use_recenter=True, use_remove_original=True)
-seconds = time.perf_counter() - t0
-
-shards = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+add_seed_cloud(tile, points, "seeds")
+seconds, shards = cell_fracture([tile], seed)
 closed, closed_as_made, volume = shard_figures(shards)
 body = size[0] * size[1] * size[2]
 print("RACE " + json.dumps({"tool": "blender_cell_fracture", "blender": bpy.app.version_string, "seeds": pieces,

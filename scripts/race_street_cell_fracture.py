@@ -20,7 +20,7 @@ import addon_utils
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from blender_shards import shard_figures, world_volume  # noqa: E402
+from blender_shards import add_seed_cloud, cell_fracture, shard_figures, world_volume  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 if len(argv) != 4:
@@ -51,24 +51,10 @@ for name, pieces in targets:
     xs, ys, zs = zip(*(tuple(v.co) for v in obj.data.vertices))
     lo, hi = (min(xs), min(ys), min(zs)), (max(xs), max(ys), max(zs))
     points = [tuple(a + rng.random() * (b - a) for a, b in zip(lo, hi)) for _ in range(pieces)]
-    cloud = bpy.data.meshes.new(name + "_seeds")
-    cloud.from_pydata(points, [], [])
-    seeds = bpy.data.objects.new(name + "_seeds", cloud)
-    bpy.context.collection.objects.link(seeds)
-    seeds.parent = obj  # identity parent inverse: the points are in the body's own frame
+    add_seed_cloud(obj, points, name + "_seeds")
     bodies.append((obj, pieces, world_volume(obj)))
 
-bpy.ops.object.select_all(action="DESELECT")
-for obj, _, _ in bodies:
-    obj.select_set(True)
-bpy.context.view_layer.objects.active = bodies[0][0]
-random.seed(seed)
-before = set(bpy.data.objects)
-t0 = time.perf_counter()
-bpy.ops.object.add_fracture_cell_objects(source={"VERT_CHILD"}, source_limit=0, source_noise=0.0,
-                                         margin=0.0, use_recenter=True, use_remove_original=True)
-fracture_s = time.perf_counter() - t0
-shards = [o for o in bpy.data.objects if o not in before and o.type == "MESH"]
+fracture_s, shards = cell_fracture([obj for obj, _, _ in bodies], seed)
 
 # The seed clouds are no part of the scene an artist exports.
 for o in [o for o in bpy.data.objects if o.name.endswith("_seeds")]:

@@ -36,9 +36,7 @@ def fissure_row(runs, check, blender_process_s):
     process_s = median_of(runs, "process_s")
     row = {"name": f"Fissure_Street/cache:{runs[0]['cache']}", "real_time": process_s * 1e3, "time_unit": "ms",
            "bodies": len(fractured), "pieces": sum(b["fragments"] for b in fractured),
-           "per_body_s": process_s / len(fractured), "bodies_s": bodies_s}
-    if check:
-        row["closed"] = check["closed"]
+           "per_body_s": process_s / len(fractured), "bodies_s": bodies_s, "closed": check["closed"]}
     for s in STAGES:
         row[s] = stage_s[s] / bodies_s
     row["speedup"] = blender_process_s / process_s
