@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libspectra-dev libcgal-dev libgmp-dev libmpfr-dev libtbb-dev
   libsuitesparse-dev libopenblas-dev
   libgmsh-dev gmsh
-  libassimp-dev assimp-utils
+  libassimp-dev assimp-utils libpugixml-dev
   libopencv-dev
   libpng-dev libjpeg62-turbo-dev libtiff-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -101,6 +101,7 @@ CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, 
     if (ext == ".gltf") precheck_gltf(bytes, name, path.parent_path());
     else if (ext == ".glb") precheck_glb(bytes, name, path.parent_path());
     else if (ext == ".fbx") precheck_fbx(bytes, name);
+    else if (ext == ".dae") precheck_collada(bytes, name);
     else throw IoError(name + ": '" + ext + "' is not read through assimp");
   }
   auto importer = std::make_unique<Assimp::Importer>();

@@ -1,5 +1,5 @@
 #pragma once
-// Private to io: what Fissure checks in a glTF, GLB or FBX file before assimp 5.2.5 sees it.
+// Private to io: what Fissure checks in a glTF, GLB, FBX or COLLADA file before assimp 5.2.5 sees it.
 //
 // Fuzzing found two ways to crash that assimp which its own checks (ValidateDataStructure
 // included) do not catch: its parsers recurse once per nesting level, so a file nested 200,000
@@ -44,6 +44,13 @@ void check_gltf_bounds(const nlohmann::json& doc, const std::string& name, const
 /// stored bytes can inflate to); the binary record offsets must lie inside the file and inside
 /// their parent record.
 void precheck_fbx(std::string_view bytes, const std::string& name);
+/// COLLADA (.dae): UTF-8 XML that parses, nests at most 512 elements deep, holds no skins, morphs,
+/// animations or embedded <hex> images; every accessor an input reads stays inside its float
+/// array for every index below its count, every <p> holds only indices (below their sources'
+/// counts) in the number its primitive type, count, <vcount> and inputs call for, with one
+/// VERTEX and one POSITION input; <instance_node>s form no cycle and expand to a bounded
+/// hierarchy (collada_bounds.cpp).
+void precheck_collada(std::string_view bytes, const std::string& name);
 /// The `count` properties of one binary FBX record, bytes [at, end) of the file, walked as
 /// assimp's tokenizer walks them: each array stored zlib-compressed must inflate to exactly its
 /// count × element size bytes (fbx_arrays.cpp). What assimp checks itself stops the walk.

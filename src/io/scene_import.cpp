@@ -310,11 +310,11 @@ ImportedScene import_scene(const fs::path& path) {
   io_detail::check_input_file(path);
   const std::string ext = io_detail::lower_ascii(path.extension().string());
   const std::string format = ext.empty() ? std::string() : ext.substr(1);
-  if (format == "gltf" || format == "glb" || format == "fbx") return import_with_assimp(path, format);
+  if (format == "gltf" || format == "glb" || format == "fbx" || format == "dae") return import_with_assimp(path, format);
   if (format == "obj") return import_obj(path);
   if (format == "ply" || format == "stl" || format == "off") return import_simple(path, format);
   throw IoError(path.string() + ": unsupported scene format '" + ext.substr(0, 20) +
-                "' (Fissure reads glTF, GLB, FBX, OBJ, PLY, STL and OFF scenes)");
+                "' (Fissure reads glTF, GLB, FBX, COLLADA (.dae), OBJ, PLY, STL and OFF scenes)");
 }
 
 std::vector<SceneBody> scene_bodies(const ImportedScene& scene) {

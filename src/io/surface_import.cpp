@@ -24,7 +24,7 @@ Reader reader_for(const fs::path& path, const std::string& name) {
   if (ext == ".ply") return Reader::Ply;
   if (ext == ".stl") return Reader::Stl;
   if (ext == ".off") return Reader::Off;
-  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx") return Reader::Assimp;
+  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx" || ext == ".dae") return Reader::Assimp;
   throw IoError(name + ": unsupported surface format '" + ext.substr(0, 20) + "' (Fissure reads " + kSurfaceFormats + ")");
 }
 

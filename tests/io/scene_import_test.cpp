@@ -1,12 +1,13 @@
 // Scene import (scene_import.hpp): the node hierarchy, its transforms, mesh instances as bodies,
-// scene material names and texture references, as written in a hand-made glTF and read back
-// through assimp; the simple formats as one node; wrong files named.
+// scene material names and texture references, as written in a hand-made glTF and COLLADA file
+// and read back through assimp; the simple formats as one node; wrong files named.
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 
+#include "collada_files.hpp"
 #include "surface_files.hpp"
 #include "test_support.hpp"
 
@@ -171,6 +172,46 @@ TEST(SceneImport, ObjObjectsAreNodesWithAMeshPerMaterial) {
   EXPECT_EQ(paths, (std::vector<std::string>{"/two/slab_a", "/two/slab_b"}));
 }
 
+// COLLADA's conventions: Z up and the file's unit, converted by assimp at the root node so the
+// meshes keep their own frame (here centimetres). Nodes instance one geometry with different
+// materials (assimp makes a mesh per primitive and binding); <library_nodes> are instanced; the
+// texture reference is kept.
+TEST(SceneImport, ColladaFollowsItsUpAxisAndUnit) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-dae");
+  write_file_atomically(dir / "street.dae", test::collada_street());
+  const ImportedScene scene = import_scene(dir / "street.dae");
+  EXPECT_EQ(scene.format, "dae");
+  EXPECT_EQ(scene.up, Eigen::Vector3d::UnitY()) << "assimp turns Z_UP into +y at the root";
+  std::vector<std::string> paths;
+  for (const SceneNode& n : scene.nodes) paths.push_back(n.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{"/Scene", "/Scene/street", "/Scene/street/slab_a", "/Scene/street/slab_b",
+                                             "/Scene/street/kerbs", "/Scene/street/kerbs/kerb"}));
+  const std::vector<SceneBody> bodies = scene_bodies(scene);
+  ASSERT_EQ(bodies.size(), 3u);
+  const auto material_of = [&](const SceneBody& b) {
+    EXPECT_EQ(b.meshes.size(), 2u) << b.path << ": the <triangles> and the <polylist>";
+    return scene.materials[static_cast<std::size_t>(scene.meshes[static_cast<std::size_t>(b.meshes.at(0))].material)];
+  };
+  EXPECT_EQ(material_of(bodies[0]).name, "concrete");
+  EXPECT_EQ(material_of(bodies[0]).textures, std::vector<std::string>{"concrete.png"});
+  EXPECT_EQ(material_of(bodies[1]).name, "glass");
+  EXPECT_EQ(material_of(bodies[2]).name, "glass");
+  // The file's (100, 0, 0) cm: slab_a moves it 2 m along the file's z (up) and the street 1 m
+  // along x; slab_b turns it 90° about z; the kerb's matrix moves it 3 m along the file's y. In
+  // +y up and metres, those are (2, 2, 0), (1, 0, −1) and (2, 0, −3). Float parsing of the
+  // file's decimals: 1e-6 relative.
+  const SceneMesh& a = scene.meshes[static_cast<std::size_t>(bodies[0].meshes.at(0))];
+  int corner = -1;
+  for (int i = 0; i < a.vertices.rows(); ++i) {
+    if (a.vertices.row(i).isApprox(Eigen::RowVector3d(100, 0, 0))) corner = i;
+  }
+  ASSERT_GE(corner, 0) << "the mesh is kept in the file's centimetres";
+  const Eigen::Vector3d x = a.vertices.row(corner).transpose();
+  EXPECT_TRUE(apply(bodies[0].world, x).isApprox(Eigen::Vector3d(2, 2, 0), 1e-6)) << apply(bodies[0].world, x).transpose();
+  EXPECT_TRUE(apply(bodies[1].world, x).isApprox(Eigen::Vector3d(1, 0, -1), 1e-6)) << apply(bodies[1].world, x).transpose();
+  EXPECT_TRUE(apply(bodies[2].world, x).isApprox(Eigen::Vector3d(2, 0, -3), 1e-6)) << apply(bodies[2].world, x).transpose();
+}
+
 TEST(SceneImport, WrongFilesAreNamed) {
   const fs::path dir = test::fresh_temp_dir("scene-import-bad");
   const auto message = [](const fs::path& p) {
@@ -184,8 +225,10 @@ TEST(SceneImport, WrongFilesAreNamed) {
     return std::string("accepted");
   };
   EXPECT_NE(message(dir / "none.glb").find("none.glb"), std::string::npos);
-  write_file_atomically(dir / "scene.dae", "<COLLADA/>");
-  EXPECT_NE(message(dir / "scene.dae").find("unsupported scene format '.dae'"), std::string::npos) << message(dir / "scene.dae");
+  write_file_atomically(dir / "scene.3ds", "MM");
+  EXPECT_NE(message(dir / "scene.3ds").find("unsupported scene format '.3ds'"), std::string::npos) << message(dir / "scene.3ds");
+  write_file_atomically(dir / "empty.dae", "<COLLADA/>");
+  EXPECT_NE(message(dir / "empty.dae").find("empty.dae"), std::string::npos) << message(dir / "empty.dae");
   write_file_atomically(dir / "noise.glb", std::string(2000, '\x5a'));
   EXPECT_NE(message(dir / "noise.glb").find("noise.glb"), std::string::npos);
   // A node referencing a mesh the file does not have: assimp's validation or ours names it.

@@ -12,13 +12,14 @@
 namespace fissure {
 
 /// The formats import_surface() reads, for messages and help texts.
-inline constexpr const char* kSurfaceFormats = "OBJ, PLY, STL, OFF, glTF, GLB and FBX";
+inline constexpr const char* kSurfaceFormats = "OBJ, PLY, STL, OFF, glTF, GLB, FBX and COLLADA (.dae)";
 
 /// Every mesh of the file, triangulated (convex faces as fans, others ear-clipped), then
-/// repaired; for glTF and FBX every mesh of the scene with node transforms applied. The format
-/// is chosen by the extension (case-insensitive). Units: metres are assumed (glTF is metres by
-/// definition; FBX files are converted to metres from their UnitScaleFactor; OBJ, PLY, STL and
-/// OFF carry no unit and are taken as metres).
+/// repaired; for glTF, FBX and COLLADA every mesh of the scene with node transforms applied. The
+/// format is chosen by the extension (case-insensitive). Units: metres are assumed (glTF is metres
+/// by definition; FBX files are converted to metres from their UnitScaleFactor, COLLADA files
+/// from their <unit meter> and Z_UP turned to +Y; OBJ, PLY, STL and OFF carry no unit and are
+/// taken as metres).
 ///
 /// Throws IoError naming the file when it is missing, empty, not a regular file (a device or
 /// FIFO would be read without end), unreadable, of another format, or
