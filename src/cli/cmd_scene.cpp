@@ -51,13 +51,6 @@ struct SceneInfoArgs {
   bool quiet = false;
 };
 
-std::string axis_name(const Eigen::Vector3d& up) {
-  for (int a = 0; a < 3; ++a) {
-    if (up[a] != 0.0) return std::string(up[a] > 0.0 ? "+" : "-") + "xyz"[a];
-  }
-  return "?";
-}
-
 // A texture reference the file gives as a path, resolved against the scene's folder; "*N" is an
 // image embedded in the file. False only for a path that names no file.
 bool texture_found(const fs::path& scene, const std::string& reference) {
@@ -114,7 +107,7 @@ int run_scene_info(const SceneInfoArgs& args) {
     nlohmann::ordered_json j;
     j["scene"] = scene.source;
     j["format"] = scene.format;
-    j["up"] = axis_name(scene.up);
+    j["up"] = up_axis_name(scene.up);
     j["nodes"] = scene.nodes.size();
     j["meshes"] = scene.meshes.size();
     nlohmann::ordered_json materials = nlohmann::ordered_json::array();
@@ -147,7 +140,7 @@ int run_scene_info(const SceneInfoArgs& args) {
     return kExitOk;
   }
   std::printf("%s: %s, up %s, %zu nodes, %zu meshes, %zu materials, %zu bodies (%d fracturable)\n", scene.source.c_str(),
-              scene.format.c_str(), axis_name(scene.up).c_str(), scene.nodes.size(), scene.meshes.size(),
+              scene.format.c_str(), up_axis_name(scene.up).c_str(), scene.nodes.size(), scene.meshes.size(),
               scene.materials.size(), bodies.size(), fracturable);
   const auto f = [](double x) { return format_number(x, 3); };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -237,6 +230,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& 
       b["tets"] = r.tets;
       b["mesh"] = r.mesh_cached ? "cached" : "made";
       b["stress"] = r.stress_cached ? "cached" : "solved";
+      b["up"] = up_axis_name(r.up);
       b["loads"] = r.loads;
       b["seconds"] = {{"meshing", r.seconds.meshing},
                       {"preparation", r.seconds.preparation},

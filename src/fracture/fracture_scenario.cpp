@@ -58,6 +58,13 @@ Eigen::Vector3d parse_up_axis(const std::string& text) {
   throw InvalidInput("--up " + text + " is not an axis: use +x, -x, +y, -y, +z or -z");
 }
 
+std::string up_axis_name(const Eigen::Vector3d& up) {
+  if (up.isZero(0.0)) return "?";
+  int axis = 0;
+  up.cwiseAbs().maxCoeff(&axis);
+  return std::string(up[axis] > 0.0 ? "+" : "-") + "xyz"[axis];
+}
+
 std::vector<int> default_support_dofs(const TetMesh& mesh, const Eigen::Vector3d& up) {
   const Frame f = frame_of(mesh, up);
   const double tolerance = 0.02 * (f.high - f.low);

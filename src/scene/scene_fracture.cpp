@@ -6,6 +6,7 @@
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/parallel.hpp"
 #include "fissure/mesh/tet_mesh_cache.hpp"
+#include "fissure/scene/body_facing.hpp"
 #include "fissure/scene/fragment_export.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_merge.hpp"
@@ -70,7 +71,8 @@ std::vector<std::string> unmatched_setups(const std::vector<SceneBody>& bodies, 
 // The run's identity (SceneFracture::run): everything that decides its output but the slice.
 std::string run_identity(const ImportedScene& scene, const SceneFractureOptions& o) {
   ContentHasher h;
-  h.add("fissure scene run v1").add(scene.up);
+  // v2: standing plates are struck on their face (body_facing.hpp), so v1 slices do not mix in.
+  h.add("fissure scene run v2").add(scene.up);
   for (const SceneNode& n : scene.nodes) {
     h.add(n.path).add(static_cast<std::int64_t>(n.parent)).add(n.local);
     for (int m : n.meshes) h.add(static_cast<std::int64_t>(m));
@@ -86,6 +88,7 @@ std::string run_identity(const ImportedScene& scene, const SceneFractureOptions&
     h.add("setup").add(path).add(static_cast<std::int64_t>(setup.free_body));
     for (const PatchLoad& l : setup.loads) h.add("load").add(l.position).add(l.normal).add(l.magnitude).add(l.radius);
     for (const SupportSpec& s : setup.supports) h.add("support").add(s.spec);
+    if (setup.up) h.add("up").add(*setup.up);
   }
   h.add(static_cast<std::int64_t>(o.seed)).add(o.age ? *o.age : -1.0).add(static_cast<std::int64_t>(o.target_tets));
   h.add(o.up ? Eigen::Vector3d(*o.up) : Eigen::Vector3d::Zero());
@@ -161,6 +164,8 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   }
 
   const Eigen::Vector3d up = (options.up ? *options.up : scene.up).normalized();
+  // Which way a standing plate faces: towards the middle of the whole scene, fractured or not.
+  const Eigen::Vector3d centre = work.empty() ? Eigen::Vector3d::Zero() : scene_centre(scene, out.bodies);
   const std::uint64_t cache_cap = options.cache_max_bytes > 0 ? options.cache_max_bytes : default_cache_size_limit();
   std::mutex done_mutex;
   int done = 0;
@@ -172,6 +177,9 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       SceneBodyCheck check = check_scene_body(scene, out.bodies[b]);
       report.repairs = check.repairs;
       if (!check.fracturable) throw InvalidInput(check.reason);
+      const auto setup = options.body_setups.find(report.path);
+      report.up = setup != options.body_setups.end() && setup->second.up ? *setup->second.up
+                                                                          : body_facing(check.world.vertices, up, centre);
       if (options.unit != 1.0) {
         check.world.vertices *= options.unit;
         check.world.appearance.corners *= options.unit;
@@ -182,11 +190,11 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       done_body.scene_materials = check.scene_materials;
       request.surface = std::move(check.world);
       request.material = *materials.at(report.material);
-      request.up = up;
+      request.up = report.up;
       request.seed = report.seed;
       request.age = options.age;
       request.target_tets = options.target_tets;
-      if (auto setup = options.body_setups.find(report.path); setup != options.body_setups.end()) {
+      if (setup != options.body_setups.end()) {
         request.patch_loads = setup->second.loads;
         request.supports = setup->second.supports;
         for (PatchLoad& l : request.patch_loads) {

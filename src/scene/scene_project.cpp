@@ -64,7 +64,7 @@ PatchLoad read_load(const json& value, const std::string& path) {
 
 SceneBodySetupEntry read_body(const json& value, const std::string& path) {
   if (!value.is_object()) throw FieldError{path + " is " + type_of(value) + ", not an object"};
-  refuse_unknown_keys(value, path + ".", {"loads", "supports", "free"});
+  refuse_unknown_keys(value, path + ".", {"loads", "supports", "free", "up"});
   SceneBodySetupEntry body;
   if (value.contains("loads")) {
     const json& loads = value["loads"];
@@ -89,6 +89,14 @@ SceneBodySetupEntry read_body(const json& value, const std::string& path) {
     body.free_body = value["free"].get<bool>();
   }
   if (body.free_body && !body.supports.empty()) throw FieldError{path + " is free and has supports: give one or the other"};
+  if (value.contains("up")) {
+    body.up = string_field(value["up"], path + ".up");
+    try {
+      parse_up_axis(*body.up);
+    } catch (const InvalidInput& e) {
+      throw FieldError{path + ".up: " + e.what()};
+    }
+  }
   return body;
 }
 
@@ -217,6 +225,7 @@ std::string scene_project_to_json(const SceneProject& p) {
     }
     if (!body.supports.empty()) b["supports"] = body.supports;
     if (body.free_body) b["free"] = true;
+    if (body.up) b["up"] = *body.up;
     bodies[path] = b;
   }
   if (!bodies.empty()) j["bodies"] = bodies;
@@ -244,6 +253,7 @@ SceneFractureOptions scene_fracture_options(const SceneProject& project, const s
     SceneBodySetup setup;
     setup.free_body = body.free_body;
     setup.loads = body.loads;
+    if (body.up) setup.up = parse_up_axis(*body.up);
     try {
       for (const std::string& s : body.supports) setup.supports.push_back(parse_support(s));
     } catch (const InvalidInput& e) {

@@ -37,6 +37,9 @@ SceneProject full_project() {
   SceneBodySetupEntry free;
   free.free_body = true;
   p.bodies["/street/sidewalk/slab_02"] = free;
+  SceneBodySetupEntry faced;
+  faced.up = "+z";
+  p.bodies["/street/curb"] = faced;
   p.output = "out/broken.glb";
   p.report = "report.json";
   return p;
@@ -62,6 +65,7 @@ TEST(SceneProject, AProjectReadsBackAsWritten) {
   ASSERT_EQ(q.bodies.at("/street/sidewalk/slab_01").loads.size(), 1u);
   EXPECT_EQ(q.bodies.at("/street/sidewalk/slab_01").loads[0].magnitude, 3000.0);
   EXPECT_TRUE(q.bodies.at("/street/sidewalk/slab_02").free_body);
+  EXPECT_EQ(q.bodies.at("/street/curb").up, std::optional<std::string>("+z"));
   EXPECT_EQ(project_path(dir / "p.json", q.output), dir / "out/broken.glb");
   EXPECT_EQ(project_path(dir / "p.json", "/abs/x.glb"), fs::path("/abs/x.glb"));
 
@@ -114,6 +118,8 @@ TEST(SceneProject, EveryMalformedFieldIsNamedWithTheFile) {
       {head + R"("bodies": {"/a": {"supports": ["cube:1"]}}})", "bodies./a.supports[0]: "},
       {head + R"("bodies": {"/a": {"supports": ["ball:0,0,0,1"], "free": true}}})", "bodies./a is free and has supports"},
       {head + R"("bodies": {"/a": {"free": "yes"}}})", "bodies./a.free is string, not true or false"},
+      {head + R"("bodies": {"/a": {"up": "front"}}})", "bodies./a.up: --up front is not an axis"},
+      {head + R"("bodies": {"/a": {"up": 3}}})", "bodies./a.up is number, not a string"},
       {head + R"("export": {"output": 1}})", "export.output is number, not a string"},
   };
   for (const auto& [text, expected] : cases) {

@@ -79,4 +79,7 @@ LoadSpec fitted_load(const TetMesh& mesh, const Eigen::Vector3d& up, int grid, d
 /// Parses "+x", "-y", "z" (= "+z"), … as a unit axis. Throws InvalidInput naming the text.
 Eigen::Vector3d parse_up_axis(const std::string& text);
 
+/// "+x", "-z", …: the axis of a vector's largest component, with its sign ("?" for zero).
+std::string up_axis_name(const Eigen::Vector3d& up);
+
 }  // namespace fissure

@@ -34,11 +34,13 @@ struct SceneAssignments {
 };
 
 /// How one body is struck and held, in world coordinates (fracture_scenario.hpp's meaning):
-/// no loads, its material's rule; no supports and not free, it rests on its lowest face.
+/// no loads, its material's rule; no supports and not free, it rests on its lowest face along
+/// its up: `up` when given, else the way its visible face looks (body_facing.hpp).
 struct SceneBodySetup {
   std::vector<PatchLoad> loads;
   std::vector<SupportSpec> supports;
   bool free_body = false;
+  std::optional<Eigen::Vector3d> up;      ///< a coordinate axis
 };
 
 struct SceneFractureOptions {
@@ -81,6 +83,7 @@ struct SceneBodyReport {
   bool mesh_cached = false;               ///< its tet mesh came from the cache
   bool stress_cached = false;             ///< its static stress came from the cache: no FEM built
   std::vector<std::string> loads;         ///< the loads as applied, as `--load` specs (forces in N)
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();  ///< the up it was fractured along (body_facing.hpp)
   BodyFracture::Seconds seconds;
 };
 

@@ -11,7 +11,8 @@
 ///       "/street/sidewalk/slab_03": {
 ///         "loads": [{"position": [1.2, 0.15, 0.3], "normal": [0, 1, 0], "magnitude": 800, "radius": 0.05}],
 ///         "supports": ["box:0,0,0,2,0.01,1@y"]   // or "free": true
-///       }
+///       },
+///       "/street/curb": {"up": "+z"}             // the way its visible face looks: struck there
 ///     },
 ///     "export": {"output": "street-broken.glb", "report": "report.json"}
 ///   }
@@ -20,7 +21,9 @@
 /// within `radius` of `position` facing along `normal`, pushed into the body with `magnitude`
 /// newtons; `fissure scene info --json` gives each body's bounds to place it). Supports use `fissure fracture --fix`'s selections (fem/supports.hpp),
 /// in world coordinates. A body with no loads gets its material's rule; with no supports it
-/// rests on its lowest face along up. Unset "age", "up", "tets", "unit": each material's, the
+/// rests on its lowest face along its up: its own "up", else the way its visible face looks
+/// (body_facing.hpp: a standing plate, such as a wall tile, faces the scene's centre; anything
+/// else, the scene's up). Unset "age", "up", "tets", "unit": each material's, the
 /// format's, the default, 1 (metres; loads and supports are in the scene's units). Unknown and repeated keys are refused (a typo must not pass as a default).
 #include "fissure/scene/scene_fracture.hpp"
 
@@ -41,6 +44,7 @@ struct SceneBodySetupEntry {
   std::vector<PatchLoad> loads;
   std::vector<std::string> supports;   ///< `--fix` selections
   bool free_body = false;
+  std::optional<std::string> up;       ///< "+z", …: the way its visible face looks (body_facing.hpp)
 };
 
 struct SceneProject {
