@@ -131,14 +131,6 @@ std::string corrupt(std::string bytes, Rng& rng, bool binary) {
   return bytes;
 }
 
-std::size_t peak_rss_bytes() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);) {
-    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
-  }
-  return 0;
-}
-
 // AddressSanitizer keeps freed blocks in a quarantine of 256 MB (its default) to catch
 // use-after-free, which the peak memory counts: the glTF/FBX fuzzing peaked at +284 MB under it,
 // +0.0 MB with ASAN_OPTIONS=quarantine_size_mb=0.
@@ -281,7 +273,7 @@ int fuzz_scale() {
 
 void fuzz(const std::vector<Corpus>& corpora, int trials, std::uint64_t seed) {
   trials *= fuzz_scale();
-  const std::size_t rss_before = peak_rss_bytes();
+  const std::size_t rss_before = test::peak_rss_bytes();
   double slowest = 0.0;
   for (std::size_t k = 0; k < corpora.size(); ++k) {
     const Corpus& c = corpora[k];
@@ -293,16 +285,16 @@ void fuzz(const std::vector<Corpus>& corpora, int trials, std::uint64_t seed) {
       const bool aim = c.aimed && t % 2 == 1;
       const std::string bytes = aim ? c.aimed(c.original, rng) : corrupt(c.original, rng, c.binary);
       test::write_test_file(c.write_to, bytes);
-      const std::size_t rss = peak_rss_bytes();
+      const std::size_t rss = test::peak_rss_bytes();
       const auto start = std::chrono::steady_clock::now();
       (import_outcome(c.import) == Outcome::Read ? read : refused)++;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       slowest = std::max(slowest, seconds);
       // A slow or greedy file is kept beside the corpus (".slow-T") to be replayed.
-      if (seconds > 1.0 || peak_rss_bytes() - rss > (std::size_t{64} << 20)) {
+      if (seconds > 1.0 || test::peak_rss_growth(rss) > (std::size_t{64} << 20)) {
         const fs::path kept = c.write_to.string() + ".slow-" + std::to_string(t);
         test::write_test_file(kept, bytes);
-        ADD_FAILURE() << c.label << " trial " << t << ": " << seconds << " s, peak memory +" << (peak_rss_bytes() - rss) / 1e6
+        ADD_FAILURE() << c.label << " trial " << t << ": " << seconds << " s, peak memory +" << test::peak_rss_growth(rss) / 1e6
                       << " MB; kept as " << kept;
       }
     }
@@ -312,8 +304,8 @@ void fuzz(const std::vector<Corpus>& corpora, int trials, std::uint64_t seed) {
   // No hang: the files are ≤ 11 kB, read in well under a millisecond each; 2 s is a hang even
   // under AddressSanitizer. No unbounded allocation: main reached 15 GB on one such file.
   EXPECT_LT(slowest, 2.0);
-  EXPECT_LT(peak_rss_bytes() - rss_before, (std::size_t{256} << 20) + kSanitizerQuarantine);
-  std::printf("slowest file %.1f ms, peak memory +%.1f MB\n", 1e3 * slowest, (peak_rss_bytes() - rss_before) / 1e6);
+  EXPECT_LT(test::peak_rss_growth(rss_before), (std::size_t{256} << 20) + kSanitizerQuarantine);
+  std::printf("slowest file %.1f ms, peak memory +%.1f MB\n", 1e3 * slowest, test::peak_rss_growth(rss_before) / 1e6);
 }
 
 TEST(ImportFuzz, FissureReadersNeverCrash) {
@@ -352,7 +344,7 @@ TEST(ImportFuzz, FissureGltfReaderNeverCrashes) {
   for (Eigen::Index t = 0; t < part.triangles.rows(); ++t) part.triangle_material.push_back(t % 2);
   scene.parts = {group, part};
   scene.extras_json = R"({"fissure":{"slice":[1,2]}})";
-  const std::size_t rss_before = peak_rss_bytes();
+  const std::size_t rss_before = test::peak_rss_bytes();
   double slowest = 0.0;
   for (const SceneFormat format : {SceneFormat::Glb, SceneFormat::Gltf}) {
     const bool binary = format == SceneFormat::Glb;
@@ -377,7 +369,7 @@ TEST(ImportFuzz, FissureGltfReaderNeverCrashes) {
     EXPECT_GT(refused, 250);
   }
   EXPECT_LT(slowest, 2.0);  // a few kB each: far below a millisecond
-  EXPECT_LT(peak_rss_bytes() - rss_before, (std::size_t{256} << 20) + kSanitizerQuarantine);
+  EXPECT_LT(test::peak_rss_growth(rss_before), (std::size_t{256} << 20) + kSanitizerQuarantine);
 }
 
 TEST(ImportFuzz, AssimpFormatsNeverCrash) {

@@ -246,14 +246,6 @@ TEST(SurfaceImport, TruncatedFilesAreRefusedWithTheFileNamed) {
   EXPECT_GT(truncated, 1000);  // most cuts are reported as such (others: "open", "holds no faces")
 }
 
-std::size_t peak_rss_bytes() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);) {
-    if (line.rfind("VmHWM:", 0) == 0) return std::stoull(line.substr(6)) * 1024;
-  }
-  return 0;
-}
-
 // Main grew to 15 GB within a minute on a 79-byte PLY whose header claims 2·10⁹ vertices: every
 // count is now checked against the bytes that follow before anything is allocated.
 TEST(SurfaceImport, CountsBeyondTheFileAreRefusedBeforeAllocating) {
@@ -275,7 +267,7 @@ TEST(SurfaceImport, CountsBeyondTheFileAreRefusedBeforeAllocating) {
       {"huge-list.ply", face_list},
       {"huge.off", "OFF\n2000000000 1000000000 0\n0 0 0\n"},
       {"huge.stl", binary_stl}};
-  const std::size_t before = peak_rss_bytes();
+  const std::size_t before = test::peak_rss_bytes();
   for (const auto& [file, bytes] : files) {
     const fs::path path = dir / file;
     write_file_atomically(path, bytes);
@@ -284,7 +276,7 @@ TEST(SurfaceImport, CountsBeyondTheFileAreRefusedBeforeAllocating) {
     EXPECT_NE(e.find("truncated"), std::string::npos) << e;
   }
   // Refused in O(1): nothing near the 24 GB 2·10⁹ vertices would take was ever allocated.
-  EXPECT_LT(peak_rss_bytes() - before, 64u << 20);
+  EXPECT_LT(test::peak_rss_growth(before), 64u << 20);
 }
 
 // A NaN or an overflowing coordinate names the vertex by its 1-based number (main said "fewer

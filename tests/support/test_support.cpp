@@ -1,7 +1,10 @@
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -40,5 +43,23 @@ CommandResult run_command(const std::string& command) {
 }
 
 fs::path fissure_executable() { return binary_dir() / "bin" / "fissure"; }
+
+std::size_t peak_rss_bytes() {
+  static std::atomic<std::size_t> highest{0};
+  std::size_t now = 0;
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmHWM:", 0) == 0) now = std::stoull(line.substr(6)) * 1024;
+  }
+  std::size_t seen = highest.load();
+  while (now > seen && !highest.compare_exchange_weak(seen, now)) {
+  }
+  return std::max(now, seen);
+}
+
+std::size_t peak_rss_growth(std::size_t before) {
+  const std::size_t now = peak_rss_bytes();
+  return now > before ? now - before : 0;
+}
 
 }  // namespace fissure::test

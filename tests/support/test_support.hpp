@@ -1,6 +1,7 @@
 #pragma once
 // Paths and small utilities shared by the test binaries.
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -25,5 +26,15 @@ struct CommandResult {
 CommandResult run_command(const std::string& command);
 /// Path of the built `fissure` executable.
 std::filesystem::path fissure_executable();
+
+/// The process's peak resident memory so far (VmHWM), never smaller than an earlier answer.
+/// The kernel's VmHWM itself can fall by a few hundred kB: it is max(recorded peak, current RSS),
+/// and the recorded peak is only updated on some paths, so memory returned by madvise (as
+/// AddressSanitizer's allocator does) lowers a peak that was only ever the current RSS. A fuzz
+/// run under the sanitizers once saw it fall by 258 kB, which an unsigned difference turned into
+/// +18 TB.
+std::size_t peak_rss_bytes();
+/// How much the peak grew since `before` (an earlier peak_rss_bytes()).
+std::size_t peak_rss_growth(std::size_t before);
 
 }  // namespace fissure::test
