@@ -126,8 +126,16 @@ fs::path checked_destination(const fs::path& target) {
     case Kind::Other: throw IoError(name + ": is a block device or socket; Fissure writes regular files, FIFOs and character devices" + via);
     case Kind::Stream: return resolved;
     case Kind::Link: break;  // resolve_links never returns a link
-    case Kind::Missing:
-    case Kind::Regular: break;
+    case Kind::Missing: break;
+    case Kind::Regular: {
+      // A file its owner made read-only is kept: renaming over it would succeed (the directory
+      // is writable) and silently undo the protection. Root passes access(), so the mode bits
+      // are read too.
+      struct stat st {};
+      if (::stat(resolved.c_str(), &st) == 0 && ((st.st_mode & 0222) == 0 || ::access(resolved.c_str(), W_OK) != 0))
+        throw IoError(name + ": is read-only; make it writable (chmod u+w) to replace it, or write elsewhere" + via);
+      break;
+    }
   }
   const fs::path dir = directory_of(resolved);
   std::error_code ec;

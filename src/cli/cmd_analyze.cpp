@@ -9,6 +9,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/exemplar/exemplar_analysis.hpp"
@@ -52,7 +53,7 @@ ExemplarAnalysisOptions analysis_options(const AnalyzeArgs& args) {
 int run_analyze(const AnalyzeArgs& args) {
   if (!args.json.empty()) check_output_path(args.json);
   if (!args.overlay.empty()) check_output_path(args.overlay);
-  if (args.json == "-" && args.overlay == "-") throw InvalidInput("--json - and --overlay -: only one result can go to stdout");
+  check_distinct_files({{"the input image", args.image}}, {{"--json", args.json}, {"--overlay", args.overlay}});
   TerminalProgress progress(args.quiet);
   Stopwatch clock;
   ExemplarAnalysis a;

@@ -8,6 +8,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/exemplar/comparison_report.hpp"
 #include "fissure/exemplar/similarity.hpp"
@@ -56,6 +57,7 @@ int run_compare(const CompareArgs& args) {
   const auto w = parse_number_list(args.weights, "--weights", 3, "fragment,crack,junction");
   const SimilarityWeights weights{w[0], w[1], w[2]};
   if (!args.report.empty()) check_output_path(args.report);
+  check_distinct_files({{"the first input", args.a}, {"the second input", args.b}}, {{"--report", args.report}});
   TerminalProgress progress(args.quiet);
   PatternStats a, b;
   {

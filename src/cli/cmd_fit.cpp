@@ -10,6 +10,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
@@ -157,6 +158,8 @@ int run_fit_command(const FitArgs& args) {
   const fs::path checkpoint = args.checkpoint.empty() ? fs::path(args.output + ".checkpoint") : fs::path(args.checkpoint);
   check_output_path(checkpoint);
   if (!args.report.empty()) check_output_path(args.report);
+  check_distinct_files({{"the exemplar", args.image}, {"--base", args.base}},
+                       {{"-o", args.output}, {"the checkpoint", checkpoint}, {"--report", args.report}});
 
   TerminalProgress progress(args.quiet);
   settings.base = load_material(find_material(args.base));
@@ -231,6 +234,11 @@ int run_merge_command(const FitArgs& args) {
     if (args.image.empty()) throw InvalidInput("--report needs --image: the shard files keep only the exemplar's statistics");
     check_output_path(args.report);
   }
+  {
+    std::vector<RoleAndPath> inputs = {{"--image", args.image}};
+    for (const std::string& path : args.shards) inputs.push_back({"the input shard", path});
+    check_distinct_files(inputs, {{"-o", args.output}, {"--report", args.report}});
+  }
   std::vector<FitShardFile> shards;
   for (const std::string& path : args.shards) shards.push_back(load_fit_shard(path));
   const Hash128 hash = fit_settings_hash(shards.front().settings);
@@ -287,7 +295,7 @@ void register_fit(CLI::App& app, Action& action) {
   cmd->add_option("--base", args->base, "Material whose physical values and noise the fit keeps (bundled name or file)")
       ->default_val(kDefaultMaterialName);
   cmd->add_option("--trials", args->trials, "Trial budget, every seed repeat counted")->default_val(20000);
-  cmd->add_option("--seed", args->seed, "Seed of every draw of the fit")->default_val(1);
+  cmd->add_option("--seed", args->seed, "Seed of every draw of the fit")->check(seed_value())->default_val(1);
   cmd->add_option("--method", args->method, "paper: the best of N prior draws, as published; smc: ABC population Monte Carlo")
       ->check(CLI::IsMember({"paper", "smc"}))
       ->default_val("smc");

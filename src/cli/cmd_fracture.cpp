@@ -11,6 +11,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/memory.hpp"
 #include "fissure/base/number_text.hpp"
@@ -168,6 +169,12 @@ int run_fracture(const FractureArgs& given) {
   if (args.pattern == "-" || args.msh == "-" || args.output == "-")
     throw InvalidInput("--pattern, --msh and -o write files; only --stats may be -");
   if (!args.output.empty()) check_scene_output_path(args.output);
+  {
+    std::vector<RoleAndPath> outputs = output_roles("-o", args.output.empty() ? std::vector<std::filesystem::path>{} : scene_output_files(args.output));
+    for (const RoleAndPath& o : std::vector<RoleAndPath>{{"--pattern", args.pattern}, {"--stats", args.stats}, {"--msh", args.msh}})
+      outputs.push_back(o);
+    check_distinct_files({{"the input", args.input}, {"--material", args.material}}, outputs);
+  }
   FractureScenario scenario;
   scenario.up = args.up.empty() ? default_up(args.input) : parse_direction(args.up, "--up");
   scenario.free_body = args.free_body;
@@ -374,7 +381,7 @@ void register_fracture(CLI::App& app, Action& action) {
   cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age; with -o, N closed meshes")
       ->type_name("INT")
       ->check(count_in(1, 1e6));
-  cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->default_val(1);
+  cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->check(seed_value())->default_val(1);
   cmd->add_flag("--posterior", args->posterior,
                 "Draw the five fitted parameters from a fitted material's posterior (per seed: similar, not identical)");
   cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input (a fitted material: its fit body's)")

@@ -9,6 +9,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/number_text.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/io/msh.hpp"
 #include "fissure/io/surface_import.hpp"
 #include "fissure/mesh/tetrahedralize.hpp"
@@ -32,6 +33,7 @@ struct MeshArgs {
 
 int run_mesh(const MeshArgs& args) {
   check_msh_output_path(args.output);
+  check_distinct_files({{"the input", args.input}}, {{"-o", args.output}});
   const int tets = static_cast<int>(std::lround(args.tets));
   TerminalProgress progress(args.quiet);
   Stopwatch clock;
@@ -79,7 +81,7 @@ void register_mesh(CLI::App& app, Action& action) {
       ->default_val(24000)
       ->check(count_in(10, 5e7));
   cmd->add_option("-o,--output", args->output, "Output mesh, gmsh MSH 4.1: a .msh file, or - for stdout")->required();
-  cmd->add_option("--seed", args->seed, "Seed of the mesher's random generator (same seed, same mesh)")->default_val(0);
+  cmd->add_option("--seed", args->seed, "Seed of the mesher's random generator (same seed, same mesh)")->check(seed_value())->default_val(0);
   cmd->add_flag("--binary", args->binary, "Write binary MSH instead of ASCII");
   cmd->add_flag("--allow-large", args->allow_large,
                 "Try a mesh whose estimated memory exceeds this machine's (refused by default)");

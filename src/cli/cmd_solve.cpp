@@ -10,6 +10,7 @@
 #include "terminal_progress.hpp"
 
 #include "fissure/base/error.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/thread_count.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/fem/load.hpp"
@@ -46,6 +47,7 @@ struct SolveArgs {
 int run_solve(const SolveArgs& args) {
   validate_material_flags(args.material);
   check_msh_output_path(args.output);
+  check_distinct_files({{"the input mesh", args.mesh}}, {{"-o", args.output}});
   if (args.load.empty() && args.gravity.empty()) throw InvalidInput("give at least one --load or --gravity");
   TerminalProgress progress(args.quiet);
   Stopwatch clock;

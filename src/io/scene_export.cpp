@@ -92,6 +92,11 @@ void check_scene_output_path(const fs::path& path) {
   if (scene_format_of(path) == SceneFormat::Obj) check_output_path(mtl_path_of(path));
 }
 
+std::vector<fs::path> scene_output_files(const fs::path& path) {
+  if (scene_format_of(path) == SceneFormat::Obj) return {path, mtl_path_of(path)};
+  return {path};
+}
+
 std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name) {
   check_scene(scene);
   switch (format) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <functional>
 #include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -104,6 +105,30 @@ TEST(AtomicFile, PreservesPermissionsOfTheReplacedFile) {
   struct stat st {};
   ASSERT_EQ(::stat(target.c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 07777, 0751u);
+}
+
+// A file its owner made read-only stays as it is, also for root (who passes access() checks);
+// the rename that replaces a file needs only the directory's permission, so it used to succeed.
+TEST(AtomicFile, RefusesToReplaceAReadOnlyFile) {
+  const fs::path dir = test::fresh_temp_dir("atomic-readonly");
+  const fs::path target = dir / "kept.glb";
+  write_file_atomically(target, "precious");
+  ASSERT_EQ(::chmod(target.c_str(), 0444), 0);
+  for (const auto& write : std::vector<std::function<void()>>{
+           [&] { write_file_atomically(target, "lost"); }, [&] { check_output_path(target); },
+           [&] { write_atomically(target, [](const fs::path& temp) { write_file_atomically(temp, "lost"); }); }}) {
+    try {
+      write();
+      ADD_FAILURE() << "a read-only file was replaced";
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(target.string() + ": is read-only"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(read_file(target), "precious");
+  // Through a link, the file it points to is what is protected.
+  fs::create_symlink(target, dir / "link.glb");
+  EXPECT_THROW(write_file_atomically(dir / "link.glb", "lost"), IoError);
+  EXPECT_EQ(read_file(target), "precious");
 }
 
 // Special files are written, never replaced: the old code renamed a regular file over

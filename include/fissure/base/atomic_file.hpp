@@ -5,7 +5,7 @@
 /// Where a write goes depends on what the target is:
 /// - a regular file, or a name that does not exist yet: the content goes to a temporary file
 ///   beside it, is flushed to disk, and is renamed over it (atomic; the old file stays intact
-///   on any failure, and keeps its permissions when replaced);
+///   on any failure, and keeps its permissions when replaced); a read-only file is refused;
 /// - a symbolic link: the same, applied to the file the link points to (followed to the end of
 ///   the chain, also when that file does not exist yet), so the link itself is kept;
 /// - "-": standard output; a FIFO or a character device (/dev/null, a terminal): written
