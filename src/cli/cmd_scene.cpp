@@ -19,6 +19,7 @@
 
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/disk_cache.hpp"
+#include "fissure/base/distinct_files.hpp"
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
@@ -184,11 +185,12 @@ struct SceneFractureArgs {
   bool quiet = false;
 };
 
-// "--assign NAME=MATERIAL": NAME is a scene material, or a node or body path when it starts with '/'.
+// "--assign NAME=MATERIAL": NAME is a scene material, or a node or body path when it starts with
+// '/'. Split at the first '=', as KEY=VALUE is everywhere: a material file's path may hold one.
 SceneAssignments parse_assignments(const std::vector<std::string>& specs) {
   SceneAssignments a;
   for (const std::string& spec : specs) {
-    const std::size_t eq = spec.rfind('=');
+    const std::size_t eq = spec.find('=');
     if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size())
       throw InvalidInput("--assign " + spec + ": expected SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL");
     const std::string key = spec.substr(0, eq), material = spec.substr(eq + 1);
@@ -213,6 +215,24 @@ std::pair<int, int> parse_slice(const std::string& text) {
   }
   if (n < 1 || k < 1 || k > n) throw InvalidInput("--bodies " + text + ": expected K/N, K from 1 to N");
   return {k, n};
+}
+
+// A malformed flag value is a command-line error (exit 2, with the help pointer), as CLI11's
+// own checks are, rather than an invalid input found later (exit 3).
+CLI::Validator parsed_by(std::function<void(const std::string&)> parse) {
+  return CLI::Validator(
+      [parse](std::string& text) -> std::string {
+        try {
+          parse(text);
+        } catch (const InvalidInput& e) {
+          std::string what = e.what();
+          // The parsers name the flag themselves; CLI11 names it again.
+          if (const std::size_t space = what.find(' '); what.rfind("--", 0) == 0 && space != std::string::npos) what = what.substr(space + 1);
+          return what;
+        }
+        return {};
+      },
+      "");
 }
 
 nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& scene, const std::string& output,
@@ -244,7 +264,8 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& 
 }
 
 // The run a project describes, with the command line's options over it: --assign adds to and
-// overrides its assignments; --seed, --age, --up, --tets, -o and --report replace its values.
+// overrides its assignments; --seed, --age, --up, --tets, --unit, --bodies, -o and --report
+// replace its values; --strict sets its "strict".
 struct SceneFractureRun {
   std::string scene;                 // the scene file to read
   SceneFractureOptions options;
@@ -274,6 +295,8 @@ SceneFractureRun scene_fracture_run(const SceneFractureArgs& args) {
   if (!args.up.empty()) project.up = args.up;
   if (args.tets > 0) project.tets = static_cast<int>(std::lround(args.tets));
   if (args.unit > 0.0) project.unit = args.unit;
+  if (!args.bodies.empty()) std::tie(project.slice, project.slices) = parse_slice(args.bodies);
+  if (args.strict) project.strict = true;
   if (!args.output.empty()) run.output = args.output;
   if (!args.report.empty()) run.report = args.report;
   if (run.output.empty())
@@ -303,12 +326,20 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   SceneFractureRun setup = scene_fracture_run(args);
   check_scene_output_path(setup.output);
   if (!setup.report.empty()) check_output_path(setup.report);
+  {
+    // No output may land on the scene or on another output; --save-project may rewrite the
+    // project being run (it gains the command line's settings), nothing else.
+    std::vector<RoleAndPath> outputs = output_roles("-o", scene_output_files(setup.output));
+    outputs.push_back({"--report", setup.report});
+    if (is_scene_project_file(args.scene)) check_distinct_files({{"the input project", args.scene}}, outputs);
+    outputs.push_back({"--save-project", args.save_project});
+    check_distinct_files({{"the input scene", setup.scene}}, outputs);
+  }
   if (!args.save_project.empty()) {
     if (!is_scene_project_file(args.save_project)) throw InvalidInput("--save-project " + args.save_project + ": a project file ends in .json");
     write_scene_project(args.save_project, project_to_save(setup.project, setup, args.save_project));
   }
   SceneFractureOptions& options = setup.options;
-  if (!args.bodies.empty()) std::tie(options.slice, options.slices) = parse_slice(args.bodies);
   options.threads = thread_count();
   options.cancel = &interrupt_token();
   if (!args.no_cache) options.cache_dir = args.cache_dir.empty() ? default_cache_directory() : fs::path(args.cache_dir);
@@ -349,7 +380,7 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!setup.report.empty()) write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds).dump(2) + "\n");
-  if (args.strict && (skipped > 0 || !run.warnings.empty())) {
+  if (setup.project.strict && (skipped > 0 || !run.warnings.empty())) {
     throw InvalidInput("--strict: " + std::to_string(skipped) + " bodies skipped, " + std::to_string(run.warnings.size()) +
                        " assignments or setups unmatched (see above); nothing written to " + setup.output);
   }
@@ -369,6 +400,9 @@ struct SceneMergeArgs {
 
 int run_scene_merge(const SceneMergeArgs& args) {
   check_scene_output_path(args.output);
+  std::vector<RoleAndPath> inputs;
+  for (const std::string& s : args.slices) inputs.push_back({"the input slice", s});
+  check_distinct_files(inputs, output_roles("-o", scene_output_files(args.output)));
   std::vector<ExportScene> slices;
   for (const std::string& s : args.slices) slices.push_back(read_fissure_gltf(s));
   write_scene(args.output, merge_scene_slices(slices, args.slices));
@@ -419,16 +453,18 @@ void register_scene(CLI::App& app, Action& action) {
                        "settings the other options override")->required();
   fracture->add_option("--assign", fr->assign,
                        "SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL (repeatable): a fracture material file or a "
-                       "library name for every body of that scene material, or for one node (overrides)");
-  auto* seed = fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path (default 1)");
-  fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(CLI::Range(0.0, 1e6));
+                       "library name for every body of that scene material, or for one node (overrides)")
+      ->check(parsed_by([](const std::string& text) { parse_assignments({text}); }));
+  auto* seed = fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path (default 1)")->check(seed_value());
+  fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(finite_in(0.0, 1e6));
   fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
       ->type_name("INT")
       ->check(count_in(10, 5e7));
   fracture->add_option("--unit", fr->unit, "Metres per scene unit (0.01 for a scene in centimetres; default 1: the format's metres)")
-      ->check(CLI::Range(1e-9, 1e9));
-  fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are");
+      ->check(finite_in(1e-9, 1e9));
+  fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are")
+      ->check(parsed_by([](const std::string& text) { parse_slice(text); }));
   fracture->add_flag("--strict", fr->strict, "Fail (and write nothing) when a body is skipped or an assignment matches nothing");
   fracture->add_flag("--no-cache", fr->no_cache, "Make every tet mesh afresh and cache none");
   fracture->add_option("--cache-dir", fr->cache_dir,

@@ -5,6 +5,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 
 namespace fissure::cli {
 namespace {
@@ -53,6 +54,22 @@ CLI::Validator count_in(double lo, double hi) {
         return {};
       },
       "COUNT in " + range_text(lo, hi));
+}
+
+CLI::Validator seed_value() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string_view digits = text;
+        if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
+        std::uint64_t value = 0;
+        const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (digits.empty() || digits.front() == '-' || end != digits.data() + digits.size() ||
+            (ec != std::errc() && ec != std::errc::result_out_of_range))
+          return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
+        if (ec == std::errc::result_out_of_range) return text + " is larger than 18446744073709551615 (2^64 - 1)";
+        return {};
+      },
+      "SEED in [0, 2^64-1]");
 }
 
 }  // namespace fissure::cli

@@ -20,4 +20,8 @@ CLI::Validator finite_in(double lo, double hi);
 /// integer conversion refuses "5e7") and convert with std::lround after parsing.
 CLI::Validator count_in(double lo, double hi);
 
+/// A seed: a whole number in [0, 2^64 − 1], written in decimal. CLI11 reads "-5" into an
+/// unsigned seed as 2^64 − 5 and saturates anything larger than 2^64 − 1, both silently.
+CLI::Validator seed_value();
+
 }  // namespace fissure::cli

@@ -21,6 +21,7 @@ struct Frame {
   Eigen::Vector3d up, a, b;  // up and two unit axes across it
   double low = 0.0, high = 0.0, across = 0.0;
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero(), hi = Eigen::Vector2d::Zero();  // the footprint across up (a, b)
 };
 
 Frame frame_of(const TetMesh& mesh, const Eigen::Vector3d& up) {
@@ -33,7 +34,9 @@ Frame frame_of(const TetMesh& mesh, const Eigen::Vector3d& up) {
   f.low = h.minCoeff();
   f.high = h.maxCoeff();
   f.across = std::max(x.maxCoeff() - x.minCoeff(), y.maxCoeff() - y.minCoeff());
-  f.centre = {0.5 * (x.maxCoeff() + x.minCoeff()), 0.5 * (y.maxCoeff() + y.minCoeff())};
+  f.lo = {x.minCoeff(), y.minCoeff()};
+  f.hi = {x.maxCoeff(), y.maxCoeff()};
+  f.centre = 0.5 * (f.lo + f.hi);
   return f;
 }
 
@@ -147,14 +150,17 @@ ScenarioLoads scenario_loads(const TetMesh& mesh, const FractureScenario& scenar
   return out;
 }
 
-LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius) {
-  const Frame f = frame_of(mesh, up);
+namespace {
+
+// The patch on the up-facing boundary face nearest to `target` across up (the highest among
+// faces as near): on a tile, right under it; on a basin, the rim or the bowl beneath.
+LoadSpec top_face_load(const TetMesh& mesh, const Frame& f, const Eigen::Vector2d& target, double force, double patch_radius) {
   const BoundaryFace* best = nullptr;
   double best_d = std::numeric_limits<double>::infinity(), best_h = 0.0;
   for (const BoundaryFace& face : mesh.boundary_faces()) {
     if (face.normal.dot(f.up) < kCos45) continue;
     const Eigen::Vector3d c = face_centre(mesh, face);
-    const double d = (Eigen::Vector2d(c.dot(f.a), c.dot(f.b)) - f.centre).norm();
+    const double d = (Eigen::Vector2d(c.dot(f.a), c.dot(f.b)) - target).norm();
     const double h = c.dot(f.up);
     // Nearest to the centre across up; among faces as near (within a millimetre's fraction of
     // the extent), the highest.
@@ -169,6 +175,24 @@ LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double for
                        "for the default load; give --load or another --up");
   }
   return patch_load(mesh, f.up, face_centre(mesh, *best), force, patch_radius);
+}
+
+}  // namespace
+
+LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius) {
+  const Frame f = frame_of(mesh, up);
+  return top_face_load(mesh, f, f.centre, force, patch_radius);
+}
+
+LoadSpec drawn_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, std::uint64_t seed) {
+  const Frame f = frame_of(mesh, up);
+  Rng rng = Rng::derive(seed, "drawn-load");
+  Eigen::Vector2d target;
+  for (int k = 0; k < 2; ++k) {
+    const double t = rng.uniform(kDrawnLoadInset, 1.0 - kDrawnLoadInset);
+    target(k) = f.lo(k) + t * (f.hi(k) - f.lo(k));
+  }
+  return top_face_load(mesh, f, target, force, 0.0);
 }
 
 LoadSpec patch_load(const TetMesh& mesh, const Eigen::Vector3d& up, const Eigen::Vector3d& centre, double force,

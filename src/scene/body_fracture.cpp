@@ -54,7 +54,11 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   // The fitted rule's patch pushes with 1 N until the body is prepared: the force that keeps the
   // fit's stress takes the prepared body to measure.
   const bool fitted_load_rule = fit && scenario.loads.empty();
+  // An unfitted material's load is drawn too, per body: the default patch at a drawn point of
+  // the top, pushing with l·m·g (1 N until the stress is scaled below).
+  const bool drawn_load_rule = !fit && scenario.loads.empty();
   if (fitted_load_rule) scenario.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, 1.0, request.seed)};
+  if (drawn_load_rule) scenario.loads = {drawn_load(*mesh, request.up, 1.0, request.seed)};
   // σ⁰ solved on the body's supports, or read from the cache without building any FEM. The
   // forces are those PreparedBody::initial_stress() solves for, so a cached run, a cold one and
   // `fissure fracture` give the same field.
@@ -69,8 +73,9 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
                                            [&statics](const Eigen::VectorXd& f) { return statics.stress_of_forces(f); });
     initial *= force;
     out.loads = {fitted_load(*mesh, request.up, fit->load_grid, fit->load_inset, force, request.seed)};
-  } else if (loads.default_load) {
-    out.loads = {default_load(*mesh, request.up, default_force, scenario.patch_radius)};
+  } else if (drawn_load_rule) {
+    initial *= default_force;
+    out.loads = {drawn_load(*mesh, request.up, default_force, request.seed)};
   }
   const FractureBody& fracture_body = statics.fracture_body();
   out.stress_cached = statics.solved() == 0;

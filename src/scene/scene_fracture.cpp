@@ -71,8 +71,9 @@ std::vector<std::string> unmatched_setups(const std::vector<SceneBody>& bodies, 
 // The run's identity (SceneFracture::run): everything that decides its output but the slice.
 std::string run_identity(const ImportedScene& scene, const SceneFractureOptions& o) {
   ContentHasher h;
-  // v2: standing plates are struck on their face (body_facing.hpp), so v1 slices do not mix in.
-  h.add("fissure scene run v2").add(scene.up);
+  // v2: standing plates are struck on their face (body_facing.hpp); v3: an unfitted material's
+  // load is drawn per body (drawn_load()). Slices of earlier versions do not mix in.
+  h.add("fissure scene run v3").add(scene.up);
   for (const SceneNode& n : scene.nodes) {
     h.add(n.path).add(static_cast<std::int64_t>(n.parent)).add(n.local);
     for (int m : n.meshes) h.add(static_cast<std::int64_t>(m));
@@ -131,10 +132,25 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   out.reports.resize(out.bodies.size());
   out.results.resize(out.bodies.size());
 
-  // The bodies of this slice, and their materials, each file loaded once.
-  std::vector<std::size_t> work;
+  // Every assigned material, each file loaded once and before any work: a misspelt name or a
+  // missing file is one error for the run, not a skip for each of its bodies.
   std::map<std::string, std::shared_ptr<const FractureMaterial>> materials;
-  std::map<std::string, std::string> material_errors;
+  const auto load_assigned = [&](const std::string& key, const std::string& material) {
+    if (materials.count(material)) return;
+    const std::string what = "assignment " + key + "=" + material + ": ";
+    try {
+      materials[material] = std::make_shared<const FractureMaterial>(load_material(find_material(material)));
+    } catch (const IoError& e) {
+      throw IoError(what + e.what());
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(what + e.what());
+    }
+  };
+  for (const auto& [name, material] : options.assignments.by_material) load_assigned(name, material);
+  for (const auto& [path, material] : options.assignments.by_path) load_assigned(path, material);
+
+  // The bodies of this slice.
+  std::vector<std::size_t> work;
   int assigned = 0;
   for (std::size_t b = 0; b < out.bodies.size(); ++b) {
     SceneBodyReport& report = out.reports[b];
@@ -145,18 +161,6 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
     report.seed = body_seed(options.seed, report.path);
     if (assigned++ % options.slices != options.slice - 1) {
       report.status = SceneBodyReport::Status::OtherSlice;
-      continue;
-    }
-    if (!materials.count(*assignment) && !material_errors.count(*assignment)) {
-      try {
-        materials[*assignment] = std::make_shared<const FractureMaterial>(load_material(find_material(*assignment)));
-      } catch (const Error& e) {
-        material_errors[*assignment] = e.what();
-      }
-    }
-    if (auto it = material_errors.find(*assignment); it != material_errors.end()) {
-      report.status = SceneBodyReport::Status::Skipped;
-      report.reason = it->second;
       continue;
     }
     report.material_name = materials[*assignment]->name;

@@ -109,7 +109,8 @@ SceneProject read_fields(const json& j) {
     throw FieldError{"fissure_project " + version.dump() + " is from a newer Fissure (this one reads up to version " +
                      std::to_string(kSceneProjectVersion) + ")"};
   }
-  refuse_unknown_keys(j, "", {"fissure_project", "scene", "seed", "age", "up", "tets", "unit", "assign", "bodies", "export"});
+  refuse_unknown_keys(j, "", {"fissure_project", "scene", "seed", "age", "up", "tets", "unit", "slice", "strict", "assign",
+                          "bodies", "export"});
   SceneProject p;
   p.scene = string_field(required(j, "", "scene"), "scene");
   if (p.scene.empty()) throw FieldError{"scene is empty"};
@@ -140,6 +141,18 @@ SceneProject read_fields(const json& j) {
   if (j.contains("unit")) {
     p.unit = positive_number(j["unit"], "unit");
     if (p.unit < 1e-9 || p.unit > 1e9) throw FieldError{"unit is " + format_number(p.unit) + ", not in 1e-9..1e9 metres per scene unit"};
+  }
+  if (j.contains("slice")) {
+    const json& slice = j["slice"];
+    const auto count = [](const json& v) { return v.is_number_unsigned() && v.get<std::uint64_t>() >= 1 && v.get<std::uint64_t>() <= 1000000; };
+    if (!slice.is_array() || slice.size() != 2 || !count(slice[0]) || !count(slice[1]) || slice[0].get<std::uint64_t>() > slice[1].get<std::uint64_t>())
+      throw FieldError{"slice is " + slice.dump() + ", not [K, N] with K from 1 to N (--bodies K/N)"};
+    p.slice = slice[0].get<int>();
+    p.slices = slice[1].get<int>();
+  }
+  if (j.contains("strict")) {
+    if (!j["strict"].is_boolean()) throw FieldError{"strict is " + j["strict"].dump() + ", not true or false"};
+    p.strict = j["strict"].get<bool>();
   }
   if (j.contains("assign")) {
     const json& assign = j["assign"];
@@ -194,7 +207,7 @@ SceneProject read_scene_project(const fs::path& file) {
   const fs::path scene = project_path(file, project.scene);
   std::error_code ec;
   if (!fs::is_regular_file(scene, ec)) {
-    throw InvalidInput(file.string() + ": its scene " + project.scene + " is not at " + fs::absolute(scene, ec).string() +
+    throw IoError(file.string() + ": its scene " + project.scene + " is not at " + fs::absolute(scene, ec).string() +
                        ": was it moved? Put the scene back or edit \"scene\" in " + file.filename().string());
   }
   return project;
@@ -209,6 +222,8 @@ std::string scene_project_to_json(const SceneProject& p) {
   if (p.up) j["up"] = *p.up;
   if (p.tets > 0) j["tets"] = p.tets;
   if (p.unit != 1.0) j["unit"] = p.unit;
+  if (p.slices > 1) j["slice"] = {p.slice, p.slices};
+  if (p.strict) j["strict"] = true;
   nlohmann::ordered_json assign = nlohmann::ordered_json::object();
   if (!p.assignments.by_material.empty()) assign["materials"] = p.assignments.by_material;
   if (!p.assignments.by_path.empty()) assign["nodes"] = p.assignments.by_path;
@@ -249,6 +264,8 @@ SceneFractureOptions scene_fracture_options(const SceneProject& project, const s
   if (project.up) o.up = parse_up_axis(*project.up);
   o.target_tets = project.tets;
   o.unit = project.unit;
+  o.slice = project.slice;
+  o.slices = project.slices;
   for (const auto& [path, body] : project.bodies) {
     SceneBodySetup setup;
     setup.free_body = body.free_body;

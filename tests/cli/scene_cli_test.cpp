@@ -14,6 +14,8 @@
 #include <map>
 #include <string>
 
+#include <sys/stat.h>
+
 namespace fissure {
 namespace {
 
@@ -154,13 +156,14 @@ TEST(SceneCli, AProjectRepeatsItsRunAndBadProjectsGetOneLine) {
   const fs::path dir = test::fresh_temp_dir("scene-cli-project");
   const std::string street = (dir / "street.glb").string();
   ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street).exit_code, 0);
-  auto r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 --seed 9 -q" +
+  auto r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=ceramic-tile --tets 800 --seed 9 -q --strict" +
                              " --save-project " + (dir / "p.json").string() + " -o " + (dir / "first.glb").string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const nlohmann::json project = nlohmann::json::parse(read_file(dir / "p.json"));
   EXPECT_EQ(project["scene"], "street.glb");
   EXPECT_EQ(project["export"]["output"], "first.glb");
   EXPECT_EQ(project["seed"], 9);
+  EXPECT_EQ(project["strict"], true);
 
   fs::create_directories(dir / "moved");
   for (const char* f : {"street.glb", "p.json"}) fs::rename(dir / f, dir / "moved" / f);
@@ -171,30 +174,38 @@ TEST(SceneCli, AProjectRepeatsItsRunAndBadProjectsGetOneLine) {
   // The scene left without its project: named, with what to do.
   fs::rename(dir / "moved" / "street.glb", dir / "street.glb");
   r = test::run_command(fissure() + " scene fracture -q " + (dir / "moved" / "p.json").string() + " -o " + (dir / "x.glb").string());
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 4) << "a file that is not there, as for scene info: " << r.output;
   EXPECT_NE(r.output.find("its scene street.glb is not at"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("was it moved?"), std::string::npos) << r.output;
   std::string text = read_file(dir / "moved" / "p.json");
   write_file_atomically(dir / "moved" / "p.json", text.substr(0, text.size() / 2));
   r = test::run_command(fissure() + " scene fracture -q " + (dir / "moved" / "p.json").string() + " -o " + (dir / "x.glb").string());
-  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.exit_code, 4) << r.output;
   EXPECT_NE(r.output.find("p.json: not a valid Fissure project: syntax error"), std::string::npos) << r.output;
   EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   EXPECT_FALSE(fs::exists(dir / "x.glb"));
 }
 
-// Wrong assignments: a material name no library has skips its bodies with the reason (exit 0,
-// a warning line each) unless --strict; an assignment to a material the scene lacks is named.
+// Wrong assignments: a material name no library has, or a material file that is not there, is one
+// line before any work (exit 3 or 4, nothing written); an assignment to a material the scene
+// lacks is a warning, an error with --strict.
 TEST(SceneCli, BadAssignmentsAreNamed) {
   const fs::path dir = test::fresh_temp_dir("scene-cli-assign");
   const std::string street = (dir / "street.glb").string();
   ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 1 --rows 1 -o " + street).exit_code, 0);
+  // A misspelt material is one line and nothing written, however many bodies use it.
   auto r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=no-such-material -o " +
                              (dir / "out.glb").string() + " 2>&1");
-  EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("skipped"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("no-such-material"), std::string::npos) << r.output;
-  EXPECT_TRUE(fs::exists(dir / "out.glb"));
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("assignment concrete=no-such-material: "), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out.glb"));
+  r = test::run_command(fissure() + " scene fracture " + street + " --assign concrete=" + (dir / "gone.json").string() +
+                        " -o " + (dir / "out.glb").string() + " 2>&1");
+  EXPECT_EQ(r.exit_code, 4) << r.output;
+  EXPECT_NE(r.output.find("gone.json"), std::string::npos) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out.glb"));
   r = test::run_command(fissure() + " scene fracture " + street + " --strict --assign tiles=ceramic-tile -o " +
                         (dir / "strict.glb").string() + " 2>&1");
   EXPECT_NE(r.exit_code, 0) << r.output;
@@ -203,6 +214,44 @@ TEST(SceneCli, BadAssignmentsAreNamed) {
   r = test::run_command(fissure() + " scene fracture " + street + " -o " + (dir / "none.glb").string() + " 2>&1");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("nothing to fracture"), std::string::npos) << r.output;
+}
+
+// Every way a new user gave one file two jobs used to exit 0 having lost one of them: the input
+// scene overwritten by -o or --report, the report and the scene written over each other, a merge
+// written over its own slice, a read-only file replaced. Each is now refused before any work,
+// naming both jobs, and every file keeps its bytes.
+TEST(SceneCli, NoOutputLandsOnAnInputOrOnAnotherOutput) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-collide");
+  const std::string street = (dir / "street.glb").string();
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 1 --rows 1 -o " + street).exit_code, 0);
+  write_file_atomically(dir / "keep.glb", "kept");
+  write_file_atomically(dir / "sealed.glb", "sealed");
+  ASSERT_EQ(::chmod((dir / "sealed.glb").c_str(), 0444), 0);
+  fs::create_symlink(dir / "street.glb", dir / "alias.glb");
+  const std::string before = read_file(street);
+  const std::string run = fissure() + " scene fracture " + street + " --assign concrete=concrete --tets 300 ";
+  const std::string d = dir.string() + "/";
+  const std::pair<std::string, std::string> cases[] = {
+      {run + "--report " + street + " -o " + d + "a.glb", "--report " + street + " is the input scene"},
+      {run + "-o " + d + "./street.glb", "-o " + d + "./street.glb is the input scene"},
+      {run + "-o " + d + "alias.glb", "-o " + d + "alias.glb is the input scene"},
+      {run + "-o " + d + "keep.glb --report " + d + "keep.glb", "name the same file"},
+      {run + "-o " + d + "b.glb --report " + d + "p.json --save-project " + d + "p.json", "--report " + d + "p.json and --save-project"},
+      {run + "-o " + d + "c.obj --report " + d + "c.mtl", "-o " + d + "c.mtl and --report " + d + "c.mtl name the same file"},
+      {run + "-o " + d + "sealed.glb", "sealed.glb: is read-only"},
+      {fissure() + " scene merge " + street + " " + d + "other.glb -o " + street, "-o " + street + " is the input slice"},
+  };
+  for (const auto& [command, expected] : cases) {
+    const auto r = test::run_command(command);
+    EXPECT_NE(r.exit_code, 0) << command << "\n" << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << command << "\n" << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+  EXPECT_EQ(read_file(street), before);
+  EXPECT_EQ(read_file(dir / "keep.glb"), "kept");
+  EXPECT_EQ(read_file(dir / "sealed.glb"), "sealed");
+  EXPECT_TRUE(fs::is_symlink(dir / "alias.glb"));
+  for (const char* name : {"a.glb", "b.glb", "p.json", "c.obj", "c.mtl"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
 }
 
 // assets/scenes/ holds what `fissure scene demo` writes (scripts/make-demo-scenes.sh): a change

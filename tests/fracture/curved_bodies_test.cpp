@@ -5,6 +5,7 @@
 // visible face, and break into several fragments with the default material and no flags.
 
 #include "fissure/fem/load.hpp"
+#include "fissure/fracture/fracture_scenario.hpp"
 #include "fissure/fracture/material_file.hpp"
 #include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/mesh/tile.hpp"
@@ -16,6 +17,7 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 
 namespace fissure {
@@ -61,6 +63,43 @@ TEST(CurvedBodies, TilesFromThirtyCentimetresToOneMetreBreakWithTheDefaults) {
     EXPECT_GE(fewest_fragments(body, params), 3);
     EXPECT_TRUE(test::expect_sane_pattern(body.mesh(), test::run_default_scenario(body, params, 1).result, "tile")
                     .fragment_count >= 3);
+  }
+}
+
+// A scene body with an unfitted material and no loads is struck at a drawn point (drawn_load()):
+// the points spread over the top's inner [inset, 1 − inset] footprint, each patch on a face that
+// looks up, the same seed the same patch. On the basin the nearest up-facing face to a drawn
+// point is its rim or its floor, never its underside.
+TEST(CurvedBodies, DrawnLoadsSpreadOverTheTopAndStayOnIt) {
+  const auto tile = mesh_of(make_tile_surface(TileSpec{0.5, 0.5, 0.02}));
+  const auto basin = mesh_of(test::basin());
+  for (const auto& mesh : {tile, basin}) {
+    SCOPED_TRACE(mesh == tile ? "tile" : "basin");
+    const Eigen::Matrix<double, 2, 3> box = mesh->bounding_box();
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(1e9), hi = Eigen::Vector2d::Constant(-1e9);
+    std::set<std::string> specs;
+    for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+      const LoadSpec load = drawn_load(*mesh, Eigen::Vector3d::UnitZ(), 1.0, seed);
+      EXPECT_EQ(load.spec, drawn_load(*mesh, Eigen::Vector3d::UnitZ(), 1.0, seed).spec);
+      specs.insert(load.spec);
+      const Eigen::Vector2d c = load.selection.center.head<2>();
+      lo = lo.cwiseMin(c);
+      hi = hi.cwiseMax(c);
+      const Eigen::VectorXd f = assemble_load(*mesh, load);
+      Eigen::Vector3d total = Eigen::Vector3d::Zero();
+      for (int v = 0; v < mesh->node_count(); ++v) total += f.segment<3>(3 * v);
+      EXPECT_NEAR(total.z(), -1.0, 1e-9) << load.spec;  // the patch holds faces and pushes down
+      if (mesh == tile) EXPECT_NEAR(load.selection.center.z(), 0.02, 1e-9) << load.spec;
+    }
+    EXPECT_GE(specs.size(), 30u) << "40 seeds, few distinct patches";
+    for (int a = 0; a < 2; ++a) {
+      const double side = box(1, a) - box(0, a);
+      // Inside the inset footprint, give or take the face the point snapped to (≤ 0.03 m here).
+      EXPECT_GT(lo(a), box(0, a) + kDrawnLoadInset * side - 0.03);
+      EXPECT_LT(hi(a), box(1, a) - kDrawnLoadInset * side + 0.03);
+      // Spread: 40 uniform draws cover well over half the inner footprint.
+      EXPECT_GT(hi(a) - lo(a), 0.5 * (1.0 - 2.0 * kDrawnLoadInset) * side);
+    }
   }
 }
 

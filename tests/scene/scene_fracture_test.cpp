@@ -374,6 +374,9 @@ TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) 
   EXPECT_THROW(fracture_scene(scene, bad), InvalidInput);
 }
 
+// An assignment that matches nothing is a warning and the rest runs; a fracture material that
+// does not load is the run's error, raised before any body is meshed (it used to skip each of
+// its bodies with a warning and exit 0).
 TEST(SceneFracture, BadAssignmentsAreNamedAndTheRestStillRuns) {
   const fs::path dir = test::fresh_temp_dir("scene_bad_assignments");
   const ImportedScene scene = small_street(dir);
@@ -381,8 +384,6 @@ TEST(SceneFracture, BadAssignmentsAreNamedAndTheRestStillRuns) {
   SceneFractureOptions options;
   options.target_tets = 800;
   options.assignments.by_material["tiles"] = "ceramic-tile";             // no such scene material
-  options.assignments.by_material["asphalt"] = "no-such-material";        // no such fracture material
-  options.assignments.by_path["/street/curb"] = (dir / "missing.json").string();  // no such file
   options.assignments.by_path["/street/sidewalk/slab_02"] = "ceramic-tile";
   options.assignments.by_path["/street/lamp"] = "glass";                  // no such node
   options.mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
@@ -396,16 +397,31 @@ TEST(SceneFracture, BadAssignmentsAreNamedAndTheRestStillRuns) {
   EXPECT_NE(run.warnings[1].find("/street/lamp"), std::string::npos) << run.warnings[1];
   std::map<std::string, SceneBodyReport> by_path;
   for (const SceneBodyReport& r : run.reports) by_path[r.path] = r;
-  EXPECT_EQ(by_path["/street/road"].status, SceneBodyReport::Status::Skipped);
-  EXPECT_NE(by_path["/street/road"].reason.find("no-such-material"), std::string::npos) << by_path["/street/road"].reason;
-  EXPECT_EQ(by_path["/street/curb"].status, SceneBodyReport::Status::Skipped);
-  EXPECT_NE(by_path["/street/curb"].reason.find("missing.json"), std::string::npos) << by_path["/street/curb"].reason;
   EXPECT_EQ(by_path["/street/sidewalk/slab_02"].status, SceneBodyReport::Status::Fractured);
   EXPECT_EQ(by_path["/street/sidewalk/slab_01"].status, SceneBodyReport::Status::Unassigned);
-  EXPECT_EQ(meshed.load(), 1);  // skipped bodies are not meshed either
+  EXPECT_EQ(meshed.load(), 1);
   // The export still holds every body.
   const ExportScene out = scene_export(scene, run);
   EXPECT_NO_THROW(encode_scene(out, SceneFormat::Glb));
+
+  meshed = 0;
+  SceneFractureOptions unknown = options;
+  unknown.assignments.by_material["asphalt"] = "no-such-material";
+  try {
+    fracture_scene(scene, unknown);
+    ADD_FAILURE() << "an unknown material name was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("assignment asphalt=no-such-material: "), std::string::npos) << e.what();
+  }
+  SceneFractureOptions missing = options;
+  missing.assignments.by_path["/street/curb"] = (dir / "missing.json").string();
+  try {
+    fracture_scene(scene, missing);
+    ADD_FAILURE() << "a missing material file was accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("assignment /street/curb=" + (dir / "missing.json").string()), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(meshed.load(), 0) << "nothing is meshed before the materials load";
 }
 
 TEST(SceneFracture, AnOpenBodyIsSkippedWithItsReason) {

@@ -28,6 +28,9 @@ SceneProject full_project() {
   p.age = 12.5;
   p.up = "+y";
   p.tets = 900;
+  p.slice = 2;
+  p.slices = 3;
+  p.strict = true;
   p.assignments.by_material["concrete"] = "ceramic-tile";
   p.assignments.by_path["/street/curb"] = "concrete";
   SceneBodySetupEntry slab;
@@ -74,6 +77,9 @@ TEST(SceneProject, AProjectReadsBackAsWritten) {
   EXPECT_EQ(*o.age, 12.5);
   EXPECT_TRUE(o.up->isApprox(Eigen::Vector3d::UnitY()));
   EXPECT_EQ(o.target_tets, 900);
+  EXPECT_EQ(o.slice, 2);
+  EXPECT_EQ(o.slices, 3);
+  EXPECT_TRUE(q.strict);
   EXPECT_EQ(o.assignments.by_path.at("/street/curb"), "concrete");
   ASSERT_EQ(o.body_setups.at("/street/sidewalk/slab_01").supports.size(), 1u);
   EXPECT_TRUE(o.body_setups.at("/street/sidewalk/slab_02").free_body);
@@ -84,6 +90,8 @@ TEST(SceneProject, AProjectReadsBackAsWritten) {
   EXPECT_EQ(m.seed, 1u);
   EXPECT_FALSE(m.age);
   EXPECT_TRUE(m.bodies.empty());
+  EXPECT_EQ(m.slices, 1);
+  EXPECT_FALSE(m.strict);
 }
 
 TEST(SceneProject, EveryMalformedFieldIsNamedWithTheFile) {
@@ -104,6 +112,10 @@ TEST(SceneProject, EveryMalformedFieldIsNamedWithTheFile) {
       {head + R"("age": 1e999})", "1e999"},
       {head + R"("up": "sideways"})", "up: "},
       {head + R"("tets": 5})", "tets is 5, not 0 (the default) or a count in 10..5e7"},
+      {head + R"("slice": [3, 2]})", "slice is [3,2], not [K, N] with K from 1 to N"},
+      {head + R"("slice": "1/2"})", "slice is \"1/2\", not [K, N]"},
+      {head + R"("slice": [0, 2]})", "slice is [0,2]"},
+      {head + R"("strict": 1})", "strict is 1, not true or false"},
       {head + R"("assign": {"materials": {"concrete": 3}}})", "assign.materials.concrete is number, not a string"},
       {head + R"("assign": {"nodes": {"curb": "concrete"}}})", "assign.nodes.curb: a node path starts with /"},
       {head + R"("assign": {"material": {}}})", "unknown key assign.\"material\" (did you mean assign.materials?)"},
@@ -145,7 +157,7 @@ TEST(SceneProject, AMovedSceneIsSaidToHaveMoved) {
   try {
     read_scene_project(dir / "p.json");
     ADD_FAILURE() << "a project whose scene is gone was read";
-  } catch (const InvalidInput& e) {
+  } catch (const IoError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find((dir / "p.json").string() + ": its scene street.glb is not at " + (dir / "street.glb").string()),
               std::string::npos) << what;

@@ -15,6 +15,7 @@
 /// 24,000) and at most `max_tets`; beyond the cap the plan says so (FitBodyPlan::capped).
 #include "fissure/base/progress.hpp"
 #include "fissure/exemplar/pattern_stats.hpp"
+#include "fissure/fracture/fracture_scenario.hpp"
 #include "fissure/fracture/prepared_body.hpp"
 #include "fissure/mesh/tile.hpp"
 
@@ -34,7 +35,7 @@ struct FitBodyOptions {
   int min_tets = 24000;
   int max_tets = 60000;                ///< the cap
   int load_grid = 8;                   ///< G: G × G tabulated load positions
-  double load_inset = 0.15;            ///< the grid spans [inset, 1 − inset] of each side
+  double load_inset = kDrawnLoadInset; ///< the grid spans [inset, 1 − inset] of each side
   std::vector<std::string> problems() const;
 };
 

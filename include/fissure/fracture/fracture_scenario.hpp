@@ -57,6 +57,17 @@ ScenarioLoads scenario_loads(const TetMesh& mesh, const FractureScenario& scenar
 /// its reference normal). Throws InvalidInput when no boundary face looks up within 45°.
 LoadSpec default_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, double patch_radius = 0.0);
 
+/// The margin of a body's footprint where no drawn load lands (drawn_load(), and the fit's
+/// load grid, fit_body.hpp): a blow right on the edge chips rather than cracks the face.
+inline constexpr double kDrawnLoadInset = 0.15;
+
+/// The default load at a drawn point instead of the centre: a point uniform over [inset,
+/// 1 − inset] of each side of the body's footprint across up, drawn from (seed, "drawn-load"),
+/// and the patch on the up-facing face nearest to it, pushing with `force`. What a scene body
+/// with no loads and an unfitted material gets, so bodies sharing a material are not all struck
+/// at their centres. Throws InvalidInput as default_load() does.
+LoadSpec drawn_load(const TetMesh& mesh, const Eigen::Vector3d& up, double force, std::uint64_t seed);
+
 /// A patch load like the default one but centred at `centre` (a point of the top face): radius
 /// `patch_radius` (0: 5 % of the body's largest extent across up), at least 2 element sizes,
 /// pushing with `force` (N) along −up. The fit's load at a drawn position.

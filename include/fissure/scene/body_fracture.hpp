@@ -10,7 +10,8 @@
 ///     prepared with its supports (default: rests on its lowest face along up);
 ///  4. the load: the ones given, else a fitted material's rule drawn as the fit draws it (a patch
 ///     at a drawn cell of the grid over the body's top, with the force that keeps the fit's
-///     stress), else the default centre patch of l·m·g;
+///     stress), else the default patch of l·m·g at a point of the top drawn with the body's
+///     seed (drawn_load(), fracture_scenario.hpp), so no two bodies are struck alike;
 ///  5. the resistance field and Algorithm 1 with the body's seed, to the given age or the
 ///     material's; then the fragments as closed meshes.
 /// Deterministic: the same input and seed give the same fragments at any thread count.

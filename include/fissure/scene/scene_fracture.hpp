@@ -4,14 +4,17 @@
 ///
 /// - Assignments: a fracture material (a file path, or a name looked up by find_material():
 ///   the bundled library, then the user library) per scene material name, and per node path,
-///   which overrides and covers the node's descendants (the nearest assigned ancestor wins). A body with no assignment is never checked, tetrahedralised or
-///   analysed: it costs nothing (the `mesher` hook lets a test prove it).
+///   which overrides and covers the node's descendants (the nearest assigned ancestor wins).
+///   Every assigned material is loaded before any body is touched: one that does not load
+///   fails the run (naming the assignment), not each of its bodies. A body with no assignment
+///   is never checked, tetrahedralised or analysed: it costs nothing (the `mesher` hook lets a
+///   test prove it).
 /// - Each assigned body gets its own seed, body_seed(project seed, body path), and with it its
 ///   own resistance field, noise, load position and, for a material with a posterior, its own
 ///   parameter draw: bodies sharing a material break "similar, not identical". The result does
 ///   not depend on the thread count or on which other bodies are assigned.
-/// - A body that cannot be fractured (open, self-intersecting, no face to rest on, a material
-///   file that does not load) is skipped with its reason; the others go on.
+/// - A body that cannot be fractured (open, self-intersecting, no face to rest on) is skipped
+///   with its reason; the others go on.
 /// - Slices: slice K of N fractures the assigned bodies whose ordinal among the assigned ones is
 ///   K − 1 modulo N, leaving the rest as they are (a job array's share).
 #include "fissure/io/scene_export.hpp"
@@ -115,7 +118,8 @@ struct SceneFracture {
 std::uint64_t body_seed(std::uint64_t project_seed, const std::string& path);
 
 /// Fractures every assigned body of `scene` (of the slice). Throws InvalidInput for bad options
-/// (a slice outside 1..N), Cancelled through options.cancel; a body's own failure is its report.
+/// (a slice outside 1..N, an unknown material name), IoError for a material file that does not
+/// load, Cancelled through options.cancel; a body's own failure is its report.
 SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOptions& options);
 
 /// The scene as it was read, with each fractured body's mesh replaced by one child node per

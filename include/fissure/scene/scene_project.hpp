@@ -6,6 +6,7 @@
 ///     "fissure_project": 1,
 ///     "scene": "street.glb",                  // relative to the project's folder, or absolute
 ///     "seed": 7, "age": 12, "up": "+y", "tets": 0, "unit": 1,
+///     "slice": [2, 4], "strict": true,         // --bodies 2/4, --strict
 ///     "assign": {"materials": {"concrete": "concrete"}, "nodes": {"/street/curb": "granite.json"}},
 ///     "bodies": {
 ///       "/street/sidewalk/slab_03": {
@@ -54,6 +55,8 @@ struct SceneProject {
   std::optional<std::string> up;       ///< "+y", "-z", …
   int tets = 0;
   double unit = 1.0;                   ///< metres per scene unit (SceneFractureOptions::unit)
+  int slice = 1, slices = 1;           ///< --bodies K/N (SceneFractureOptions::slice, slices)
+  bool strict = false;                 ///< --strict: a skipped body or an unmatched assignment fails the run
   SceneAssignments assignments;
   std::map<std::string, SceneBodySetupEntry> bodies;  ///< by body path
   std::string output;                  ///< export: the scene with its fragments, as written
@@ -62,7 +65,7 @@ struct SceneProject {
 
 /// Reads a project file. Throws IoError naming the file for a missing, unreadable or malformed
 /// file ("project.json: not a valid Fissure project: bodies./a.loads[0].radius is -1, not
-/// positive"), one from a newer Fissure, and InvalidInput when the scene it names is not there
+/// positive"), one from a newer Fissure, and when the scene it names is not there
 /// ("project.json: its scene street.glb is not at /work/street.glb: was it moved? Put the scene
 /// back or edit \"scene\" in project.json").
 SceneProject read_scene_project(const std::filesystem::path& file);
@@ -78,8 +81,8 @@ std::filesystem::path project_path(const std::filesystem::path& project_file, co
 /// True when `file` is to be read as a project: its name ends in .json.
 bool is_scene_project_file(const std::filesystem::path& file);
 
-/// The options a project gives to fracture_scene() (assignments, seed, age, up, tets, and each
-/// body's loads and supports); threads, slices and the cache are the caller's. Throws
+/// The options a project gives to fracture_scene() (assignments, seed, age, up, tets, slice, and
+/// each body's loads and supports); threads and the cache are the caller's. Throws
 /// InvalidInput naming the project, body and entry for a support or up axis that does not parse.
 SceneFractureOptions scene_fracture_options(const SceneProject& project, const std::string& source);
 
