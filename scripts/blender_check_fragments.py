@@ -9,6 +9,9 @@ glTF is imported with "Merge Vertices" (the UV seams are split vertices, as glTF
 flat shading: Debian 12's Blender 3.4 with numpy 1.24 fails on the default "Normals" shading
 (np.bool was removed from numpy). OBJ is imported as it is:
 its positions are written once each, so no merging is needed.
+
+Blender's glTF importer needs numpy: `apt-get install blender python3-numpy` (scripts/race-setup.sh
+does it; apt does not pull numpy in with Blender).
 """
 import json
 import sys

@@ -14,6 +14,9 @@ original bounding box and together fill it (to 1e-4 m and 0.1 % of its diagonal)
   blender -b --python scripts/blender_check_scene.py -- scene.glb [original.glb]
 
 Shading is Flat: Debian 12's Blender 3.4 with numpy 1.24 fails on the default "Normals" shading.
+
+Blender's glTF importer needs numpy: `apt-get install blender python3-numpy` (scripts/race-setup.sh
+does it; apt does not pull numpy in with Blender).
 """
 import json
 import re

@@ -217,6 +217,9 @@ std::pair<int, int> parse_slice(const std::string& text) {
   return {k, n};
 }
 
+// "1 body", "2 bodies".
+std::string counted(long long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+
 // A malformed flag value is a command-line error (exit 2, with the help pointer), as CLI11's
 // own checks are, rather than an invalid input found later (exit 3).
 CLI::Validator parsed_by(std::function<void(const std::string&)> parse) {
@@ -259,7 +262,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& 
     }
     bodies.push_back(b);
   }
-  return {{"scene", scene}, {"output", output}, {"seed", seed}, {"warnings", run.warnings},
+  return {{"scene", scene}, {"output", output}, {"seed", seed}, {"warnings", run.warnings}, {"notes", run.notes},
           {"seconds", seconds}, {"bodies", bodies}};
 }
 
@@ -369,6 +372,8 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   progress.clear();
   int fractured = 0, skipped = 0, fragments = 0;
   for (const std::string& w : run.warnings) std::cerr << "fissure scene fracture: warning: " << w << '\n';
+  if (!args.quiet)
+    for (const std::string& n : run.notes) std::cerr << "fissure scene fracture: note: " << n << '\n';
   for (const SceneBodyReport& r : run.reports) {
     if (r.status == SceneBodyReport::Status::Fractured) {
       ++fractured;
@@ -381,14 +386,14 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!setup.report.empty()) write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds).dump(2) + "\n");
   if (setup.project.strict && (skipped > 0 || !run.warnings.empty())) {
-    throw InvalidInput("--strict: " + std::to_string(skipped) + " bodies skipped, " + std::to_string(run.warnings.size()) +
+    throw InvalidInput("--strict: " + counted(skipped, "body", "bodies") + " skipped, " + std::to_string(run.warnings.size()) +
                        " assignments or setups unmatched (see above); nothing written to " + setup.output);
   }
   write_scene(setup.output, out);
   if (!args.quiet) {
-    std::printf("%s: %d bodies fractured into %d fragments, %d skipped, %zu untouched; wrote %s in %s s\n",
-                setup.scene.c_str(), fractured, fragments, skipped, run.reports.size() - fractured - skipped,
-                setup.output.c_str(), format_number(seconds, 3).c_str());
+    std::printf("%s: %s fractured into %s, %d skipped, %zu untouched; wrote %s in %s s\n", setup.scene.c_str(),
+                counted(fractured, "body", "bodies").c_str(), counted(fragments, "fragment", "fragments").c_str(), skipped,
+                run.reports.size() - fractured - skipped, setup.output.c_str(), format_number(seconds, 3).c_str());
   }
   return kExitOk;
 }
@@ -440,7 +445,7 @@ void register_scene(CLI::App& app, Action& action) {
   auto args = std::make_shared<SceneInfoArgs>();
   auto* info = cmd->add_subcommand("info", "List a scene's bodies, materials, sizes and which bodies can be fractured");
   add_threads_option(*info);
-  info->add_option("SCENE", args->scene, "Scene file (glTF, GLB, FBX, OBJ, PLY, STL, OFF)")->required();
+  info->add_option("SCENE", args->scene, "Scene file (glTF, GLB, FBX, DAE, OBJ, PLY, STL, OFF)")->required();
   info->add_flag("--json", args->json, "Print the result as JSON");
   info->add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   info->callback([&action, args] { action = [args] { return run_scene_info(*args); }; });
@@ -449,7 +454,7 @@ void register_scene(CLI::App& app, Action& action) {
   auto* fracture = cmd->add_subcommand("fracture", "Fracture every body of the assigned materials and write the scene with its fragments");
   add_threads_option(*fracture);
   fracture->add_option("SCENE", fr->scene,
-                       "Scene file (glTF, GLB, FBX, OBJ, PLY, STL, OFF), or a project (.json, docs/scenes.md) whose "
+                       "Scene file (glTF, GLB, FBX, DAE, OBJ, PLY, STL, OFF), or a project (.json, docs/scenes.md) whose "
                        "settings the other options override")->required();
   fracture->add_option("--assign", fr->assign,
                        "SCENE_MATERIAL=MATERIAL or /node/path=MATERIAL (repeatable): a fracture material file or a "

@@ -570,7 +570,7 @@ TetMesh tetrahedralize(const SurfaceMesh& surface, const TetrahedralizeOptions& 
   if (r.quality.min_dihedral_deg < options.refuse_below_dihedral_deg) {
     throw NumericalFailure(source + ": the mesh has a sliver (" + mesh.tet_label(r.quality.worst_dihedral_tet) +
                            ", min dihedral " + format_number(r.quality.min_dihedral_deg, 3) +
-                           " deg) after sliver removal");
+                           " deg) after sliver removal; more tets (a finer mesh) usually avoids it");
   }
   if (r.quality.min_dihedral_deg < 5.0) {
     r.warnings.push_back("min dihedral angle " + format_number(r.quality.min_dihedral_deg, 3) +

@@ -249,6 +249,20 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
     }
   });
   if (!cache_warning.empty()) out.warnings.push_back(cache_warning);
+  for (const std::size_t b : work) {
+    const SceneBodyReport& r = out.reports[b];
+    if (r.status != SceneBodyReport::Status::Fractured) continue;
+    // 1.5×: the mesher's own count tolerance is far tighter; this is a body that needed more.
+    if (options.target_tets > 0 && r.tets > 1.5 * options.target_tets) {
+      out.notes.push_back(r.path + ": meshed with " + std::to_string(r.tets) + " tets, not the " +
+                          std::to_string(options.target_tets) +
+                          " asked for: elements larger than a thin body's thickness would leave it hollow");
+    }
+    if (r.fragments <= 1) {
+      out.notes.push_back(r.path + ": no crack separated a piece, so it stays whole (" +
+                          format_number(out.results[b]->fracture.params.age) + " age units); a larger --age breaks it further");
+    }
+  }
   return out;
 }
 

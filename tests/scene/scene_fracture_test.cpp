@@ -374,6 +374,28 @@ TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) 
   EXPECT_THROW(fracture_scene(scene, bad), InvalidInput);
 }
 
+// What was asked for but not given is said, not hidden: a slab meshed with several times the
+// tets asked for (a coarser mesh would leave it hollow), a body too young to break that comes out
+// whole. Neither is a warning (--strict would fail the run on it).
+TEST(SceneFracture, WhatWasAskedButNotGivenIsNoted) {
+  const fs::path dir = test::fresh_temp_dir("scene_notes");
+  const ImportedScene scene = small_street(dir);
+  SceneFractureOptions options;
+  options.target_tets = 60;
+  options.age = 1e-9;
+  options.assignments.by_path["/street/sidewalk/slab_02"] = "ceramic-tile";
+  const SceneFracture run = fracture_scene(scene, options);
+  EXPECT_TRUE(run.warnings.empty());
+  int tets = 0;
+  for (const SceneBodyReport& r : run.reports)
+    if (r.path == "/street/sidewalk/slab_02") tets = r.tets;
+  ASSERT_GT(tets, 90) << "the slab no longer needs more than 1.5 x 60 tets: pick a smaller request";
+  ASSERT_EQ(run.notes.size(), 2u);
+  EXPECT_NE(run.notes[0].find("/street/sidewalk/slab_02: meshed with " + std::to_string(tets) + " tets, not the 60 asked for"),
+            std::string::npos) << run.notes[0];
+  EXPECT_NE(run.notes[1].find("/street/sidewalk/slab_02: no crack separated a piece"), std::string::npos) << run.notes[1];
+}
+
 // An assignment that matches nothing is a warning and the rest runs; a fracture material that
 // does not load is the run's error, raised before any body is meshed (it used to skip each of
 // its bodies with a warning and exit 0).

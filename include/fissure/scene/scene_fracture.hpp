@@ -107,6 +107,10 @@ struct SceneFracture {
   /// Assignments that match nothing in the scene ("--assign tiles=…: the scene has no material
   /// tiles (it has: a, b)"), and a cache that could not be written; the run goes on.
   std::vector<std::string> warnings;
+  /// What the user asked for but did not get, in body order: a thin body meshed with far more
+  /// tets than target_tets (the mesher keeps elements no larger than the body's thickness, or it
+  /// leaves the body hollow), a body that came out whole. Not failures: --strict ignores them.
+  std::vector<std::string> notes;
   int slice = 1, slices = 1;              ///< the slice run (SceneFractureOptions)
   double unit = 1.0;                      ///< metres per scene unit (SceneFractureOptions)
   /// What identifies the run across its slices: a hash of the scene's content (nodes, meshes,
