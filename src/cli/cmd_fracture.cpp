@@ -170,7 +170,7 @@ int run_fracture(const FractureArgs& given) {
     throw InvalidInput("--pattern, --msh and -o write files; only --stats may be -");
   if (!args.output.empty()) check_scene_output_path(args.output);
   {
-    std::vector<RoleAndPath> outputs = output_roles("-o", args.output.empty() ? std::vector<std::filesystem::path>{} : scene_output_files(args.output));
+    std::vector<RoleAndPath> outputs = output_roles("-o", scene_output_files(args.output));  // "" is ignored
     for (const RoleAndPath& o : std::vector<RoleAndPath>{{"--pattern", args.pattern}, {"--stats", args.stats}, {"--msh", args.msh}})
       outputs.push_back(o);
     check_distinct_files({{"the input", args.input}, {"--material", args.material}}, outputs);

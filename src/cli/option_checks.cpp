@@ -63,7 +63,7 @@ CLI::Validator seed_value() {
         if (digits.size() > 1 && digits.front() == '+') digits.remove_prefix(1);
         std::uint64_t value = 0;
         const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-        if (digits.empty() || digits.front() == '-' || end != digits.data() + digits.size() ||
+        if (digits.empty() || end != digits.data() + digits.size() ||
             (ec != std::errc() && ec != std::errc::result_out_of_range))
           return "'" + text + "' is not a whole number from 0 to 18446744073709551615";
         if (ec == std::errc::result_out_of_range) return text + " is larger than 18446744073709551615 (2^64 - 1)";

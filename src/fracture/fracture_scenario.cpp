@@ -162,7 +162,7 @@ LoadSpec top_face_load(const TetMesh& mesh, const Frame& f, const Eigen::Vector2
     const Eigen::Vector3d c = face_centre(mesh, face);
     const double d = (Eigen::Vector2d(c.dot(f.a), c.dot(f.b)) - target).norm();
     const double h = c.dot(f.up);
-    // Nearest to the centre across up; among faces as near (within a millimetre's fraction of
+    // Nearest to the target across up; among faces as near (within a millimetre's fraction of
     // the extent), the highest.
     if (d < best_d - 1e-6 * f.across || (std::abs(d - best_d) <= 1e-6 * f.across && h > best_h)) {
       best = &face;

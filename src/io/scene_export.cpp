@@ -88,8 +88,7 @@ void check_scene_output_path(const fs::path& path) {
   // Before the path's own checks: `-o x.stl` must not be written as something else under that name.
   if (!scene_format_of(path))
     throw IoError(path.string() + ": the output must end in " + std::string(kSceneFormats));
-  check_output_path(path);
-  if (scene_format_of(path) == SceneFormat::Obj) check_output_path(mtl_path_of(path));
+  for (const fs::path& file : scene_output_files(path)) check_output_path(file);
 }
 
 std::vector<fs::path> scene_output_files(const fs::path& path) {

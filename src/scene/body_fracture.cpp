@@ -65,8 +65,8 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   CachedStaticStress statics(mesh, params.elastic(), scenario, field_cache.directory, field_cache.max_bytes, threads);
   const ScenarioLoads loads = scenario_loads(*mesh, scenario);
   const double default_force = params.load_factor * (params.density * mesh->total_volume()) * kStandardGravity;
-  StressField initial = statics.stress_of_forces(loads.default_load ? Eigen::VectorXd(default_force * loads.unit_forces)
-                                                                     : loads.unit_forces);
+  // Never the scenario's default load: with no loads given, one of the two rules above set one.
+  StressField initial = statics.stress_of_forces(loads.unit_forces);
   out.loads = loads.loads;
   if (fitted_load_rule) {
     const double force = fitted_load_force(*fit, params, *mesh, scenario,

@@ -280,6 +280,17 @@ TEST(SceneCli, WrongFilesGetOneLine) {
   EXPECT_EQ(std::count(other.output.begin(), other.output.end(), '\n'), 1) << other.output;
   const auto bare = test::run_command(fissure() + " scene");
   EXPECT_EQ(bare.exit_code, 2) << bare.output;
+  // Flag values CLI11 used to let through (a wrapped seed, NaN) or that were found only later:
+  // each a command-line error naming the flag, before any file is read.
+  const std::string run = fissure() + " scene fracture " + (dir / "none.glb").string() + " -o " + (dir / "x.glb").string();
+  for (const std::string flags : {"--assign a=b --seed -5", "--assign a=b --seed 18446744073709551616", "--assign a=b --age nan",
+                                  "--assign a=b --unit nan", "--assign a=b --bodies 0/3", "--assign a"}) {
+    const auto r = test::run_command(run + " " + flags);
+    EXPECT_EQ(r.exit_code, 2) << flags << ": " << r.output;
+    const std::string flag = flags.substr(flags.rfind("--"), flags.find(' ', flags.rfind("--")) - flags.rfind("--"));
+    EXPECT_NE(r.output.find(flag), std::string::npos) << flags << ": " << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
 }
 
 }  // namespace
