@@ -46,6 +46,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// "1 body", "2 bodies".
+std::string counted(long long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
+
 struct SceneInfoArgs {
   std::string scene;
   bool json = false;
@@ -140,9 +143,13 @@ int run_scene_info(const SceneInfoArgs& args) {
     std::printf("%s\n", j.dump(2).c_str());
     return kExitOk;
   }
-  std::printf("%s: %s, up %s, %zu nodes, %zu meshes, %zu materials, %zu bodies (%d fracturable)\n", scene.source.c_str(),
-              scene.format.c_str(), up_axis_name(scene.up).c_str(), scene.nodes.size(), scene.meshes.size(),
-              scene.materials.size(), bodies.size(), fracturable);
+  const auto count = [](std::size_t n, const char* one, const char* many) {
+    return counted(static_cast<long long>(n), one, many);
+  };
+  std::printf("%s: %s, up %s, %s, %s, %s, %s (%d fracturable)\n", scene.source.c_str(), scene.format.c_str(),
+              up_axis_name(scene.up).c_str(), count(scene.nodes.size(), "node", "nodes").c_str(),
+              count(scene.meshes.size(), "mesh", "meshes").c_str(), count(scene.materials.size(), "material", "materials").c_str(),
+              count(bodies.size(), "body", "bodies").c_str(), fracturable);
   const auto f = [](double x) { return format_number(x, 3); };
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     const SceneBodyCheck& c = checks[i];
@@ -216,9 +223,6 @@ std::pair<int, int> parse_slice(const std::string& text) {
   if (n < 1 || k < 1 || k > n) throw InvalidInput("--bodies " + text + ": expected K/N, K from 1 to N");
   return {k, n};
 }
-
-// "1 body", "2 bodies".
-std::string counted(long long n, const char* one, const char* many) { return std::to_string(n) + " " + (n == 1 ? one : many); }
 
 // A malformed flag value is a command-line error (exit 2, with the help pointer), as CLI11's
 // own checks are, rather than an invalid input found later (exit 3).

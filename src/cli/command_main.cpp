@@ -41,8 +41,13 @@ int run_command(int argc, char** argv, void (*register_command)(CLI::App&, Actio
 
   // CLI11's messages, in one line that says where help is.
   app.failure_message([](const CLI::App* top, const CLI::Error& e) {
-    const auto chosen = top->get_subcommands();
-    const std::string help = chosen.empty() ? "fissure --help" : "fissure " + chosen.front()->get_name() + " --help";
+    // The deepest subcommand chosen ("fissure scene fracture --help", not "fissure scene --help").
+    std::string help = "fissure";
+    for (const CLI::App* at = top; !at->get_subcommands().empty();) {
+      at = at->get_subcommands().front();
+      help += " " + at->get_name();
+    }
+    help += " --help";
     return "fissure: " + one_line(e.what()) + " (see " + help + ")\n";
   });
 

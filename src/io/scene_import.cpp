@@ -211,9 +211,10 @@ ImportedScene import_simple(const fs::path& path, const std::string& format) {
 
 // OBJ: a node per object (`o NAME`, in the order of their first faces) under a root named after
 // the file, each holding one mesh per material its faces use (as assimp splits glTF and FBX
-// meshes), with per-vertex texture coordinates when the file has them. A file of one object (or
-// none) is one node named after the file, as the other simple formats. OBJ has no hierarchy and no
-// transforms: every node's transform is the identity.
+// meshes), with per-vertex texture coordinates when the file has them. A file with no `o` or `g`
+// names is one node named after the file, as the other simple formats; a file of one named object
+// keeps the name (Blender writes `o Cube` for a lone cube: the body is /file/Cube). OBJ has no
+// hierarchy and no transforms: every node's transform is the identity.
 ImportedScene import_obj(const fs::path& path) {
   const std::string name = path.string();
   io_detail::check_input_file(path);
@@ -246,7 +247,7 @@ ImportedScene import_obj(const fs::path& path) {
     std::vector<int>& used = materials_of[o];
     if (std::find(used.begin(), used.end(), material_of(t)) == used.end()) used.push_back(material_of(t));
   }
-  const bool one_node = object_order.size() == 1;
+  const bool one_node = object_order.size() == 1 && objects.names[static_cast<std::size_t>(object_order[0])].empty();
   const std::string stem = path.stem().string();
   SceneNode root;
   root.name = stem;

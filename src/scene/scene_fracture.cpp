@@ -173,7 +173,9 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   const std::uint64_t cache_cap = options.cache_max_bytes > 0 ? options.cache_max_bytes : default_cache_size_limit();
   std::mutex done_mutex;
   int done = 0;
-  std::string cache_warning;
+  // A cache that cannot be written is said once per kind (tet meshes, stress fields), as the
+  // first body in scene order met it, so the warnings do not depend on the thread schedule.
+  std::vector<std::string> mesh_cache_warnings(out.bodies.size()), stress_cache_warnings(out.bodies.size());
   parallel_for_dynamic(work.size(), options.threads, [&](std::size_t w) {
     const std::size_t b = work[w];
     SceneBodyReport& report = out.reports[b];
@@ -217,20 +219,14 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
         mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
           TetMeshCacheResult r = cached_tetrahedralize(surface, o, options.cache_dir, cache_cap, options.cancel);
           report.mesh_cached = r.loaded;
-          if (!r.warning.empty()) {
-            const std::lock_guard<std::mutex> lock(done_mutex);
-            cache_warning = r.warning;
-          }
+          mesh_cache_warnings[b] = std::move(r.warning);
           return std::move(r.mesh);
         };
       }
       done_body.fracture = fracture_body_surface(request, 1, mesher, options.cancel, {options.cache_dir, cache_cap});
       const BodyFracture& result = done_body.fracture;
       report.stress_cached = result.stress_cached;
-      if (!result.cache_warning.empty()) {
-        const std::lock_guard<std::mutex> lock(done_mutex);
-        cache_warning = result.cache_warning;
-      }
+      stress_cache_warnings[b] = result.cache_warning;
       report.status = SceneBodyReport::Status::Fractured;
       report.fragments = static_cast<int>(result.fragments.size());
       report.tets = result.tets;
@@ -248,7 +244,10 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       options.on_body_done(++done, static_cast<int>(work.size()), report.path);
     }
   });
-  if (!cache_warning.empty()) out.warnings.push_back(cache_warning);
+  for (const auto* kind : {&mesh_cache_warnings, &stress_cache_warnings}) {
+    const auto first = std::find_if(kind->begin(), kind->end(), [](const std::string& w) { return !w.empty(); });
+    if (first != kind->end()) out.warnings.push_back(*first);
+  }
   for (const std::size_t b : work) {
     const SceneBodyReport& r = out.reports[b];
     if (r.status != SceneBodyReport::Status::Fractured) continue;

@@ -147,6 +147,18 @@ TEST(SceneCli, AWarmCacheMeshesAndSolvesNothingAndChangesNoByte) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "warm.glb"));
   EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "uncached.glb"));
+
+  // A cache that cannot be written (its directory is a file): the run still writes the same
+  // bytes and says so once for each cache it could not fill, the tet meshes and the stresses.
+  write_file_atomically(dir / "file", "not a directory");
+  const auto blocked = test::run_command(run + " --cache-dir " + (dir / "file").string() + " -o " + (dir / "blocked.glb").string());
+  ASSERT_EQ(blocked.exit_code, 0) << blocked.output;
+  for (const char* kind : {"warning: tet mesh not cached", "warning: stress field not cached"}) {
+    std::size_t seen_at = blocked.output.find(kind), count = 0;
+    for (; seen_at != std::string::npos; seen_at = blocked.output.find(kind, seen_at + 1)) ++count;
+    EXPECT_EQ(count, 1u) << kind << ": " << blocked.output;
+  }
+  EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "blocked.glb"));
 }
 
 // A project saved by one run repeats it: the same bytes from `scene fracture PROJECT`, its paths
@@ -290,6 +302,8 @@ TEST(SceneCli, WrongFilesGetOneLine) {
     const std::string flag = flags.substr(flags.rfind("--"), flags.find(' ', flags.rfind("--")) - flags.rfind("--"));
     EXPECT_NE(r.output.find(flag), std::string::npos) << flags << ": " << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    // The help named is the subcommand's own, where these flags are listed.
+    EXPECT_NE(r.output.find("(see fissure scene fracture --help)"), std::string::npos) << flags << ": " << r.output;
   }
 }
 

@@ -108,8 +108,9 @@ TEST(SceneImport, SimpleFormatsAreOneNodeWithTheirConventionalUp) {
   test::write_test_file(dir / "box.stl", test::to_stl(box));
   const ImportedScene obj = import_scene(dir / "box.obj");
   EXPECT_EQ(obj.up, Eigen::Vector3d::UnitY());
-  ASSERT_EQ(obj.nodes.size(), 1u);
-  EXPECT_EQ(obj.nodes[0].path, "/box");
+  // The file's one object is named (`o solid`): a node of that name under the file's root.
+  ASSERT_EQ(obj.nodes.size(), 2u);
+  EXPECT_EQ(obj.nodes[1].path, "/box/solid");
   ASSERT_EQ(scene_bodies(obj).size(), 1u);
   EXPECT_EQ(obj.meshes[0].triangles.rows(), 12);
   EXPECT_EQ(import_scene(dir / "box.stl").up, Eigen::Vector3d::UnitZ());
@@ -170,6 +171,18 @@ TEST(SceneImport, ObjObjectsAreNodesWithAMeshPerMaterial) {
   std::vector<std::string> paths;
   for (const SceneBody& b : scene_bodies(back)) paths.push_back(b.path);
   EXPECT_EQ(paths, (std::vector<std::string>{"/two/slab_a", "/two/slab_b"}));
+
+  // One named object, as Blender writes a lone cube: the name is kept under the file's root;
+  // with no name, the file is the one node.
+  test::write_test_file(dir / "nameless.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const ImportedScene nameless = import_scene(dir / "nameless.obj");
+  ASSERT_EQ(nameless.nodes.size(), 1u);
+  EXPECT_EQ(nameless.nodes[0].path, "/nameless");
+  test::write_test_file(dir / "lone.obj", "o Pillar\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
+  const ImportedScene lone = import_scene(dir / "lone.obj");
+  ASSERT_EQ(scene_bodies(lone).size(), 1u);
+  EXPECT_EQ(scene_bodies(lone)[0].path, "/lone/Pillar");
+  EXPECT_EQ(lone.meshes[0].name, "Pillar");
 }
 
 // COLLADA's conventions: Z up and the file's unit, converted by assimp at the root node so the
