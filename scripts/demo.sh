@@ -16,10 +16,10 @@ fissure=$build_dir/bin/fissure
 out=$build_dir/demo
 mkdir -p "$out"
 
-# Age 12: a sidewalk a few years on, two to ten pieces a slab (the material's own age, 6, leaves
-# most slabs whole).
+# Age 50: every slab broken, into 2 to 30 pieces (at age 12, 10 of the 24 stay whole: the
+# pieces they seemed to have were dust, docs/fragments.md).
 echo "== fissure scene fracture assets/scenes/street.glb (sidewalk slabs and curb: concrete)"
-"$fissure" scene fracture "$root/assets/scenes/street.glb" --assign concrete=concrete --assign curb=concrete --age 12 \
+"$fissure" scene fracture "$root/assets/scenes/street.glb" --assign concrete=concrete --assign curb=concrete --age 50 \
   --report "$out/street-report.json" -o "$out/street-fractured.glb"
 
 if command -v blender >/dev/null; then

@@ -23,6 +23,9 @@
 namespace fissure {
 namespace {
 
+// Dust, as a fraction of the mean element volume (mesh_fragments below).
+constexpr double kDustPerElement = 0.01;
+
 using Polygon = detail::SmallVector<Eigen::Vector3d, 8>;  // the type of PieceFace::points
 using detail::PieceFace;
 using detail::PieceFaceKind;
@@ -748,7 +751,22 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
   // neighbours' faces on it would be collapsed open; it joins the neighbour it shares the most
   // crack area with, and the fragments are assigned again (a pass only when there is debris).
   const double debris_size = 3e-6 * std::max(diagonal, box.cwiseAbs().maxCoeff());
+  // Dust: a fragment of less than kDustPerElement of a mean element's volume is below what the
+  // mesh resolves (a crack clipping a tet's corner cuts it off), not a shard the simulation
+  // predicts; it joins its neighbour as debris does. Left alone, 50 of the 299 fragments of the
+  // README's street run were under 1 mm³, down to 3e-15 m³.
+  const double dust_volume = kDustPerElement * mesh.total_volume() / std::max(1, n);
+  std::vector<double> piece_volumes(sets.size(), 0.0);
+  for (int t = 0; t < n; ++t) {
+    if (!cut(t)) {
+      piece_volumes[static_cast<std::size_t>(piece_id(t, 0))] = mesh.volumes()(t);
+      continue;
+    }
+    const auto& mine = pieces[static_cast<std::size_t>(t)];
+    for (std::size_t i = 0; i < mine.size(); ++i) piece_volumes[static_cast<std::size_t>(piece_id(t, i))] = detail::piece_volume(mine[i]);
+  }
   std::vector<int> fragment_of_piece(sets.size()), first_tet, representative;
+  std::vector<double> fragment_volume;
   std::vector<std::vector<Emitted>> emitted;
   std::vector<std::map<int, double>> contact_area;
   for (bool again = true; again;) {
@@ -767,6 +785,9 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
         fragment_of_piece[static_cast<std::size_t>(id)] = fragment_of_root[static_cast<std::size_t>(root)];
       }
     }
+    fragment_volume.assign(first_tet.size(), 0.0);
+    for (std::size_t id = 0; id < piece_volumes.size(); ++id)
+      fragment_volume[static_cast<std::size_t>(fragment_of_piece[id])] += piece_volumes[id];
 
     emitted.assign(first_tet.size(), {});
     contact_area.assign(first_tet.size(), {});
@@ -811,7 +832,7 @@ std::vector<FragmentMesh> mesh_fragments(const TetMesh& mesh, const std::vector<
           low = low.cwiseMin(x);
           high = high.cwiseMax(x);
         }
-      if ((high - low).norm() >= debris_size) continue;
+      if ((high - low).norm() >= debris_size && fragment_volume[k] >= dust_volume) continue;
       const auto largest = std::max_element(contact_area[k].begin(), contact_area[k].end(),
                                             [](const auto& x, const auto& y) { return x.second < y.second; });
       sets.unite(representative[k], representative[static_cast<std::size_t>(largest->first)]);

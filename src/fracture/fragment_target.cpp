@@ -20,7 +20,7 @@ bool near_target(int count, int target, double tolerance = 0.2) {
 }
 
 // Meshings simulate_to_fragment_mesh_count spends beyond the first.
-constexpr int kMaxMeshCountSteps = 6;
+constexpr int kMaxMeshCountSteps = 8;
 
 // `run` cut to its first k cracks, or to the whole tie of cracks at the k-th crack's time (an
 // age cannot split a tie); returns the age of that state.
@@ -120,9 +120,10 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
     if (it == labelled.end()) it = labelled.emplace(k, label_fragments(body.mesh(), run.cracks, k).count).first;
     return it->second;
   };
-  int best_k = static_cast<int>(run.cracks.size()), best = first, k_before = -1;
+  int best_k = static_cast<int>(run.cracks.size()), best = first;
   bool improved = false;  // best_k is a later state than the labeller's, meshed as best_meshes
   std::vector<FragmentMesh> best_meshes;
+  std::map<int, int> meshed{{best_k, first}};  // crack prefix → its meshes' count (prefixes of every run alike)
   double ratio = static_cast<double>(first) / std::max(1, labelled_of(best_k));
   for (int step = 0; step < kMaxMeshCountSteps && !near_target(best, target, tolerance); ++step) {
     const int goal = static_cast<int>(std::ceil(target / std::max(ratio, 1e-3)));
@@ -133,11 +134,21 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
       labelled.clear();
     }
     // The smallest prefix labelled ≥ goal, or all.
-    const int k = smallest_prefix_reaching(static_cast<int>(run.cracks.size()), goal, labelled_of);
-    if (k == k_before || k == best_k) break;  // no new prefix to try
-    k_before = k;
+    int k = smallest_prefix_reaching(static_cast<int>(run.cracks.size()), goal, labelled_of);
+    // The meshes' count is nearly monotone in the prefix, but the labeller's ratio to it drifts
+    // (fragments under the debris and dust sizes join a neighbour; thin passages it misses): the
+    // secant step is kept only inside the bracket the meshings so far give, else the bracket is
+    // halved, so a drifting ratio cannot stall the search on a prefix already tried.
+    const auto above = std::find_if(meshed.begin(), meshed.end(), [&](const auto& m) { return m.second > target; });
+    int lo = 0;
+    for (auto it = meshed.begin(); it != above; ++it)
+      if (it->second < target) lo = it->first;
+    const int hi = above == meshed.end() ? static_cast<int>(run.cracks.size()) + 1 : above->first;
+    if (k <= lo || k >= hi || meshed.count(k)) k = (lo + hi) / 2;
+    if (k <= lo || k >= hi || meshed.count(k) || k > static_cast<int>(run.cracks.size())) break;  // no new prefix to try
     std::vector<FragmentMesh> meshes = mesh(run, k);
     const int count = static_cast<int>(meshes.size());
+    meshed[k] = count;
     ratio = static_cast<double>(count) / std::max(1, labelled_of(k));
     if (std::abs(count - target) < std::abs(best - target)) {
       best = count;
