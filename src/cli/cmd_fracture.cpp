@@ -74,11 +74,11 @@ std::string lower_extension(const std::string& input) {
   return ext;
 }
 
-// The up axis of the input's own convention: glTF, FBX and COLLADA are +Y up, the rest
-// (tile:, .msh, STL, PLY, OFF, OBJ) +Z.
+// The up axis of the input's own convention: glTF, FBX, COLLADA and OBJ (as Blender writes it,
+// and as `fissure scene` reads it) are +Y up, the rest (tile:, .msh, STL, PLY, OFF) +Z.
 Eigen::Vector3d default_up(const std::string& input) {
   const std::string ext = is_tile_spec(input) ? std::string() : lower_extension(input);
-  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx" || ext == ".dae") return Eigen::Vector3d::UnitY();
+  if (ext == ".gltf" || ext == ".glb" || ext == ".fbx" || ext == ".dae" || ext == ".obj") return Eigen::Vector3d::UnitY();
   return Eigen::Vector3d::UnitZ();
 }
 
@@ -335,9 +335,14 @@ int run_fracture(const FractureArgs& given) {
                                    ? std::to_string(stats.fragment_count) + " fragments, " +
                                          std::to_string(stats.junction_count) + " junctions on the visible face"
                                    : "no visible face (" + visible.empty_reason + ")";
-    std::fprintf(out, "%s: %d tets, %s, age %s: %zu cracks (%zu partial), %d fragments; %s; %s s preparation, %s s simulation\n",
+    // With -o the count is the meshes written (what the artist opens); the labeller's count, which
+    // can run ahead of it on dense patterns (fragment_target.hpp), only without.
+    const std::string fragment_text = args.output.empty()
+                                          ? std::to_string(result.fragments.count) + " fragments"
+                                          : std::to_string(fragment_meshes) + " fragments written to " + args.output;
+    std::fprintf(out, "%s: %d tets, %s, age %s: %zu cracks (%zu partial), %s; %s; %s s preparation, %s s simulation\n",
                  args.input.c_str(), mesh->tet_count(), material_name.c_str(), format_number(target.age, 4).c_str(),
-                 result.cracks.size(), result.partial_cracks.size(), result.fragments.count, pattern_text.c_str(),
+                 result.cracks.size(), result.partial_cracks.size(), fragment_text.c_str(), pattern_text.c_str(),
                  format_number(preparation_s, 3).c_str(), format_number(simulation_s, 3).c_str());
   }
   return kExitOk;
@@ -376,7 +381,7 @@ void register_fracture(CLI::App& app, Action& action) {
                   "Load SEL[^nx,ny,nz]=fx,fy,fz in N (repeatable); default: a patch at the centre of the top face "
                   "pushing down with load_factor x body weight");
   cmd->add_flag("--free", args->free_body, "Hold nothing: the load is balanced by inertia (inertia relief)");
-  cmd->add_option("--up", args->up, "Up axis (+x, -y, … or x,y,z); default: +y for glTF/FBX/DAE, else +z");
+  cmd->add_option("--up", args->up, "Up axis (+x, -y, … or x,y,z); default: +y for glTF/FBX/DAE/OBJ, else +z");
   cmd->add_option("--view", args->view, "Direction the visible face looks along (default: up)");
   cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age; with -o, N closed meshes")
       ->type_name("INT")

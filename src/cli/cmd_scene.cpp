@@ -23,6 +23,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
+#include "fissure/fracture/fracture_params.hpp"
 #include "fissure/fracture/fracture_scenario.hpp"
 #include "fissure/io/gltf_reader.hpp"
 #include "fissure/io/scene_export.hpp"
@@ -89,6 +90,7 @@ int run_scene_info(const SceneInfoArgs& args) {
   }
   throw_if_interrupted();
   progress.clear();
+  for (const std::string& w : scene.warnings) std::cerr << "fissure scene info: warning: " << w << '\n';
   // A body's meshes and their scene materials, ", "-separated (a mesh split by material is one body).
   const auto mesh_names = [&](const SceneBody& b) {
     std::string names;
@@ -340,7 +342,10 @@ int run_scene_fracture(const SceneFractureArgs& args) {
     outputs.push_back({"--report", setup.report});
     if (is_scene_project_file(args.scene)) check_distinct_files({{"the input project", args.scene}}, outputs);
     outputs.push_back({"--save-project", args.save_project});
-    check_distinct_files({{"the input scene", setup.scene}}, outputs);
+    std::vector<RoleAndPath> inputs;
+    for (const fs::path& file : scene_input_files(setup.scene))
+      inputs.push_back({inputs.empty() ? "the input scene" : "the input scene's material library", file.string()});
+    check_distinct_files(inputs, outputs);
   }
   if (!args.save_project.empty()) {
     if (!is_scene_project_file(args.save_project)) throw InvalidInput("--save-project " + args.save_project + ": a project file ends in .json");
@@ -374,13 +379,14 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   }
   throw_if_interrupted();
   progress.clear();
-  int fractured = 0, skipped = 0, fragments = 0;
+  int fractured = 0, whole = 0, skipped = 0, fragments = 0;
   for (const std::string& w : run.warnings) std::cerr << "fissure scene fracture: warning: " << w << '\n';
   if (!args.quiet)
     for (const std::string& n : run.notes) std::cerr << "fissure scene fracture: note: " << n << '\n';
   for (const SceneBodyReport& r : run.reports) {
     if (r.status == SceneBodyReport::Status::Fractured) {
       ++fractured;
+      whole += r.fragments <= 1;
       fragments += r.fragments;
     } else if (r.status == SceneBodyReport::Status::Skipped) {
       ++skipped;
@@ -390,14 +396,17 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!setup.report.empty()) write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds).dump(2) + "\n");
   if (setup.project.strict && (skipped > 0 || !run.warnings.empty())) {
-    throw InvalidInput("--strict: " + counted(skipped, "body", "bodies") + " skipped, " + std::to_string(run.warnings.size()) +
-                       " assignments or setups unmatched (see above); nothing written to " + setup.output);
+    throw InvalidInput("--strict: " + counted(skipped, "body", "bodies") + " skipped, " +
+                       counted(static_cast<long long>(run.warnings.size()), "warning", "warnings") + " (see above); nothing written to " +
+                       setup.output);
   }
   write_scene(setup.output, out);
   if (!args.quiet) {
-    std::printf("%s: %s fractured into %s, %d skipped, %zu untouched; wrote %s in %s s\n", setup.scene.c_str(),
-                counted(fractured, "body", "bodies").c_str(), counted(fragments, "fragment", "fragments").c_str(), skipped,
-                run.reports.size() - fractured - skipped, setup.output.c_str(), format_number(seconds, 3).c_str());
+    // A body that stayed whole was simulated but did not break: said apart, as its note says.
+    const std::string stayed = whole == 0 ? "" : " (" + std::to_string(whole) + " stayed whole)";
+    std::printf("%s: %s fractured into %s%s, %d skipped, %zu untouched; wrote %s in %s s\n", setup.scene.c_str(),
+                counted(fractured, "body", "bodies").c_str(), counted(fragments, "fragment", "fragments").c_str(), stayed.c_str(),
+                skipped, run.reports.size() - fractured - skipped, setup.output.c_str(), format_number(seconds, 3).c_str());
   }
   return kExitOk;
 }
@@ -465,7 +474,10 @@ void register_scene(CLI::App& app, Action& action) {
                        "library name for every body of that scene material, or for one node (overrides)")
       ->check(parsed_by([](const std::string& text) { parse_assignments({text}); }));
   auto* seed = fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path (default 1)")->check(seed_value());
-  fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(finite_in(0.0, 1e6));
+  // The age's range is the parameter table's, as `fissure fracture --age` has it: an age past it
+  // would be refused by every body, one at a time.
+  const ParameterInfo& age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))];
+  fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(finite_in(age.min, age.max));
   fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
       ->type_name("INT")
@@ -482,7 +494,7 @@ void register_scene(CLI::App& app, Action& action) {
   fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
   fracture->add_option("--save-project", fr->save_project,
                        "Write the run's settings as a project (.json) before running: fissure scene fracture PROJECT "
-                       "repeats the run");
+                       "repeats the run (the project being run may be named: it is updated with this run's options)");
   fracture->add_option("-o,--output", fr->output,
                        "The scene with its fragments: .glb, .gltf, .obj (+ .mtl) or .ply (required unless a project gives it)");
   fracture->add_flag("-q,--quiet", fr->quiet, "Print nothing on success, no progress");

@@ -65,6 +65,13 @@ void check_supports_for_mechanisms(const TetMesh& mesh, const std::vector<int>& 
   std::vector<int> sorted_dofs = fixed_dofs;
   std::sort(sorted_dofs.begin(), sorted_dofs.end());
   sorted_dofs.erase(std::unique(sorted_dofs.begin(), sorted_dofs.end()), sorted_dofs.end());
+  // Nothing left free: no load can deform it (the solver met an empty system and said "out of
+  // memory?").
+  if (static_cast<Eigen::Index>(sorted_dofs.size()) == 3 * static_cast<Eigen::Index>(mesh.node_count())) {
+    throw InvalidInput("the supports fix every node of " +
+                       (mesh.source_name().empty() ? std::string("the mesh") : mesh.source_name()) +
+                       ": nothing is left to move or to crack; fix a part of it (a face, a box)");
+  }
   for (int dof : sorted_dofs) {
     const int v = dof / 3;
     const std::size_t c = static_cast<std::size_t>(component_of_node[v]);

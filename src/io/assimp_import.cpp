@@ -95,13 +95,14 @@ SurfaceAppearance appearance_of(const aiScene& scene, const SurfaceMesh& surface
 }  // namespace
 
 CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, const std::string& name, bool flatten) {
+  std::map<std::string, std::string> collada_node_names;
   {
     const std::string bytes = read_file(path);
     const std::string ext = lower_ascii(path.extension().string());
     if (ext == ".gltf") precheck_gltf(bytes, name, path.parent_path());
     else if (ext == ".glb") precheck_glb(bytes, name, path.parent_path());
     else if (ext == ".fbx") precheck_fbx(bytes, name);
-    else if (ext == ".dae") precheck_collada(bytes, name);
+    else if (ext == ".dae") collada_node_names = precheck_collada(bytes, name);
     else throw IoError(name + ": '" + ext + "' is not read through assimp");
   }
   auto importer = std::make_unique<Assimp::Importer>();
@@ -153,7 +154,7 @@ CheckedAssimpScene read_checked_assimp_scene(const std::filesystem::path& path, 
     if (vertex_count > kMaxIndex) throw IoError(name + ": more than " + std::to_string(kMaxIndex) + " vertices");
   }
   if (face_count == 0) throw InvalidInput(name + ": holds no triangles");
-  return {std::move(importer), vertex_count, face_count};
+  return {std::move(importer), vertex_count, face_count, std::move(collada_node_names)};
 }
 
 SurfaceMesh import_with_assimp(const std::filesystem::path& path, const std::string& name) {

@@ -14,6 +14,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -29,6 +30,9 @@ namespace fissure::io_detail {
 struct CheckedAssimpScene {
   std::unique_ptr<Assimp::Importer> importer;  ///< owns the scene
   std::uint64_t vertices = 0, triangles = 0;   ///< over the triangle meshes
+  /// COLLADA: each <node>'s name attribute by its id, where they differ (assimp names nodes by
+  /// id, a modeller shows the name).
+  std::map<std::string, std::string> collada_node_names;
   const aiScene& scene() const { return *importer->GetScene(); }
 };
 /// Throws IoError naming `name` when the file is corrupt, InvalidInput when it holds no triangles.

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -49,8 +50,9 @@ void precheck_fbx(std::string_view bytes, const std::string& name);
 /// array for every index below its count, every <p> holds only indices (below their sources'
 /// counts) in the number its primitive type, count, <vcount> and inputs call for, with one
 /// VERTEX and one POSITION input; <instance_node>s form no cycle and expand to a bounded
-/// hierarchy (collada_bounds.cpp).
-void precheck_collada(std::string_view bytes, const std::string& name);
+/// hierarchy (collada_bounds.cpp). Returns the name attribute of each <node> by its id (only
+/// where the two differ): assimp names nodes by id.
+std::map<std::string, std::string> precheck_collada(std::string_view bytes, const std::string& name);
 /// The `count` properties of one binary FBX record, bytes [at, end) of the file, walked as
 /// assimp's tokenizer walks them: each array stored zlib-compressed must inflate to exactly its
 /// count × element size bytes (fbx_arrays.cpp). What assimp checks itself stops the walk.

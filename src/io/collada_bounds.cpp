@@ -142,6 +142,17 @@ class ColladaBounds {
  public:
   ColladaBounds(std::string_view bytes, const std::string& name) : m_bytes(bytes), m_name(name) {}
 
+  /// After check(): every <node>'s name by its id, where it has both and they differ.
+  std::map<std::string, std::string> node_names() const {
+    std::map<std::string, std::string> names;
+    for (const pugi::xpath_node& found : m_doc.select_nodes("//node[@id and @name]")) {
+      const Node node = found.node();
+      const std::string id = node.attribute("id").as_string(), name = node.attribute("name").as_string();
+      if (!name.empty() && name != id) names.emplace(id, name);
+    }
+    return names;
+  }
+
   void check() {
     if (const std::size_t nul = m_bytes.find('\0'); nul != std::string_view::npos) {
       // assimp parses up to the first NUL; a text format holding one is corrupt (or UTF-16).
@@ -565,6 +576,10 @@ class ColladaBounds {
 
 }  // namespace
 
-void precheck_collada(std::string_view bytes, const std::string& name) { ColladaBounds(bytes, name).check(); }
+std::map<std::string, std::string> precheck_collada(std::string_view bytes, const std::string& name) {
+  ColladaBounds bounds(bytes, name);
+  bounds.check();
+  return bounds.node_names();
+}
 
 }  // namespace fissure::io_detail

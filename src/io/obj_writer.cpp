@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <map>
 #include <vector>
@@ -20,10 +21,24 @@ std::string obj_name(const std::string& name) {
   return out;
 }
 
+// A part's object name: its path from the scene's root part, names joined by '/' (a '/' inside
+// a name becomes '_'), so the fragments of two bodies, each named fragment_000, stay apart and
+// Fissure's OBJ import rebuilds the hierarchy from it (scene_import.cpp).
+std::string obj_object_name(const ExportScene& scene, std::size_t k) {
+  std::string path;
+  for (int at = static_cast<int>(k); at >= 0; at = scene.parts[static_cast<std::size_t>(at)].parent) {
+    std::string name = obj_name(scene.parts[static_cast<std::size_t>(at)].name);
+    std::replace(name.begin(), name.end(), '/', '_');
+    path = path.empty() ? name : name + "/" + path;
+  }
+  return path;
+}
+
 }  // namespace
 
 std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
-  std::string out = "# Fissure: " + std::to_string(scene.parts.size()) + " parts, metres\n";
+  const auto objects = std::count_if(scene.parts.begin(), scene.parts.end(), [](const ExportPart& p) { return p.triangles.rows() > 0; });
+  std::string out = "# Fissure: " + std::to_string(objects) + (objects == 1 ? " object" : " objects") + ", metres\n";
   if (!mtl_name.empty()) out += "mtllib " + mtl_name + "\n";
   // OBJ indexes positions and UVs apart: each position is written once, so a part whose
   // vertices were split at UV seams reads back as one welded, closed surface with no merging.
@@ -32,7 +47,7 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
     const ExportPart& part = scene.parts[k];
     if (part.triangles.rows() == 0) continue;  // a group: OBJ has no hierarchy
     const Eigen::Matrix4d to_scene = part_to_scene(scene, k);
-    out += "o " + obj_name(part.name) + "\n";
+    out += "o " + obj_object_name(scene, k) + "\n";
     // Extras as comments, one line: OBJ has no place for them.
     out += "# extras " + nlohmann::json::parse(part.extras_json).dump() + "\n";
     std::map<std::array<double, 3>, long long> position_index;

@@ -176,6 +176,11 @@ ImportedScene import_with_assimp(const fs::path& path, const std::string& format
   }
   drop_assimp_default_material(out);
   add_nodes(*scene.mRootNode, -1, mesh_index, out, name, 0);
+  // COLLADA nodes by the name a modeller shows (Blender's outliner), not assimp's id.
+  for (SceneNode& node : out.nodes) {
+    const auto named = checked.collada_node_names.find(node.name);
+    if (named != checked.collada_node_names.end()) node.name = named->second;
+  }
   assign_paths(out);
   return out;
 }
@@ -222,9 +227,11 @@ ImportedScene import_obj(const fs::path& path) {
   const auto size = fs::file_size(path, ec);
   if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
   io_detail::ObjObjects objects;
-  const SurfaceMesh surface = io_detail::read_obj(read_file(path), name, &objects);
-  const SurfaceAppearance& look = surface.appearance;
+  const std::string bytes = read_file(path);
+  SurfaceMesh surface = io_detail::read_obj(bytes, name, &objects);
   ImportedScene out;
+  const std::map<std::string, std::string> textures = io_detail::apply_material_libraries(path, bytes, surface.appearance, &out.warnings);
+  const SurfaceAppearance& look = surface.appearance;
   out.source = name;
   out.format = "obj";
   out.up = Eigen::Vector3d::UnitY();  // as Blender writes OBJ
@@ -232,7 +239,9 @@ ImportedScene import_obj(const fs::path& path) {
   for (std::size_t m = 0; m < look.materials.size(); ++m) {
     if (look.materials[m].name.empty()) continue;
     scene_material[m] = static_cast<int>(out.materials.size());
-    out.materials.push_back({look.materials[m].name, look.materials[m].colour, {}});
+    const auto texture = textures.find(look.materials[m].name);
+    out.materials.push_back({look.materials[m].name, look.materials[m].colour,
+                             texture == textures.end() ? std::vector<std::string>{} : std::vector<std::string>{texture->second}});
   }
   const Eigen::Index triangles = surface.faces.rows();
   const auto material_of = [&](Eigen::Index t) {
@@ -253,15 +262,39 @@ ImportedScene import_obj(const fs::path& path) {
   root.name = stem;
   out.nodes.push_back(root);
   const bool has_uvs = look.uvs.rows() > 0;
-  for (const int o : object_order) {
+  // An object named a/b/c (as Fissure writes the fragments of a scene) is node c under b under
+  // a, the intermediate nodes shared; empty segments are dropped.
+  std::map<std::string, int> node_of_path{{"", 0}};
+  const auto node_for = [&](const std::string& name) {
+    std::string path;
     int node = 0;
-    if (!one_node) {
+    for (std::size_t begin = 0; begin <= name.size();) {
+      const std::size_t end = std::min(name.find('/', begin), name.size());
+      if (end > begin) {
+        const std::string segment = name.substr(begin, end - begin);
+        path += "/" + segment;
+        const auto [it, inserted] = node_of_path.try_emplace(path, static_cast<int>(out.nodes.size()));
+        if (inserted) {
+          SceneNode child;
+          child.name = segment;
+          child.parent = node;
+          out.nodes.push_back(child);
+        }
+        node = it->second;
+      }
+      begin = end + 1;
+    }
+    if (node == 0) {  // a name of slashes only, or none: a node named after the file
       SceneNode child;
-      child.name = objects.names[static_cast<std::size_t>(o)].empty() ? stem : objects.names[static_cast<std::size_t>(o)];
+      child.name = stem;
       child.parent = 0;
       node = static_cast<int>(out.nodes.size());
       out.nodes.push_back(child);
     }
+    return node;
+  };
+  for (const int o : object_order) {
+    const int node = one_node ? 0 : node_for(objects.names[static_cast<std::size_t>(o)]);
     const std::vector<int>& used = materials_of[o];
     for (const int material : used) {
       // The mesh: this object's triangles of this material, its vertices renumbered; a vertex
@@ -316,6 +349,21 @@ ImportedScene import_scene(const fs::path& path) {
   if (format == "ply" || format == "stl" || format == "off") return import_simple(path, format);
   throw IoError(path.string() + ": unsupported scene format '" + ext.substr(0, 20) +
                 "' (Fissure reads glTF, GLB, FBX, COLLADA (.dae), OBJ, PLY, STL and OFF scenes)");
+}
+
+std::vector<fs::path> scene_input_files(const fs::path& path) {
+  std::vector<fs::path> files{path};
+  std::error_code ec;
+  if (io_detail::lower_ascii(path.extension().string()) != ".obj" || !fs::is_regular_file(path, ec)) return files;
+  try {
+    for (const std::string& library : io_detail::obj_material_libraries(read_file(path), path.string())) {
+      const fs::path file = path.parent_path() / library;
+      if (fs::exists(file, ec)) files.push_back(file);
+    }
+  } catch (const Error&) {
+    // An unreadable scene is reported by import_scene, with its reason.
+  }
+  return files;
 }
 
 std::vector<SceneBody> scene_bodies(const ImportedScene& scene) {

@@ -49,7 +49,12 @@ SurfaceMesh read_surface_file(const fs::path& path) {
   if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
   const std::string bytes = read_file(path);
   switch (reader) {
-    case Reader::Obj: return read_obj(bytes, name);
+    case Reader::Obj: {
+      // The colours of its materials from its .mtl files (a missing one leaves them grey).
+      SurfaceMesh surface = read_obj(bytes, name);
+      apply_material_libraries(path, bytes, surface.appearance, nullptr);
+      return surface;
+    }
     case Reader::Ply: return read_ply(bytes, name);
     case Reader::Stl: return read_stl(bytes, name);
     default: return read_off(bytes, name);
@@ -59,7 +64,17 @@ SurfaceMesh read_surface_file(const fs::path& path) {
 }  // namespace io_detail
 
 SurfaceMesh import_surface(const fs::path& path, SurfaceRepairReport& report, const SurfaceRepairOptions& options) {
-  return repair_surface(io_detail::read_surface_file(path), report, options);
+  SurfaceMesh read = io_detail::read_surface_file(path);
+  try {
+    return repair_surface(std::move(read), report, options);
+  } catch (const InvalidInput& e) {
+    // A scene's objects read as one surface: touching bodies (a curb against a road) cross.
+    // The likely cause, and the command that breaks each object on its own.
+    const std::string ext = io_detail::lower_ascii(path.extension().string());
+    const bool scene_format = ext == ".glb" || ext == ".gltf" || ext == ".fbx" || ext == ".dae" || ext == ".obj";
+    if (!scene_format || std::string_view(e.what()).find(": self-intersecting: ") == std::string_view::npos) throw;
+    throw InvalidInput(std::string(e.what()) + " (a scene of several objects that touch? fissure scene fracture breaks each on its own)");
+  }
 }
 
 SurfaceMesh load_surface_input(const std::string& input, SurfaceRepairReport& report) {

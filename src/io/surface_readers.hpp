@@ -13,6 +13,8 @@
 #include "fissure/mesh/surface_mesh.hpp"
 
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +30,26 @@ struct ObjObjects {
   std::vector<int> triangle_object;
 };
 SurfaceMesh read_obj(std::string_view bytes, const std::string& name, ObjObjects* objects = nullptr);
+
+/// The MTL files an OBJ's `mtllib` lines name, as written (relative to the OBJ's folder).
+std::vector<std::string> obj_material_libraries(std::string_view obj_bytes, const std::string& name);
+
+/// A Wavefront MTL's materials: per `newmtl`, its `Kd` colour (when given) and `map_Kd` texture
+/// reference (the file name as written, or empty). Throws IoError naming the file and line for
+/// a Kd that is not three numbers or a statement before any newmtl.
+struct MtlMaterial {
+  std::string name;
+  std::optional<Eigen::Vector3d> colour;
+  std::string texture;
+};
+std::vector<MtlMaterial> read_mtl(std::string_view bytes, const std::string& name);
+
+/// The MTL files the OBJ `obj` (whose bytes are `obj_bytes`) names, read from beside it: each
+/// material of `look` named in one takes its Kd colour. Returns per material name its map_Kd
+/// reference. A library that is not there adds a line to `warnings` (when given) and changes
+/// nothing; a corrupt one throws IoError "<obj>: its material library <mtl>:<line>: …".
+std::map<std::string, std::string> apply_material_libraries(const std::filesystem::path& obj, std::string_view obj_bytes,
+                                                            SurfaceAppearance& look, std::vector<std::string>* warnings);
 
 /// Stanford PLY 1.0, `ascii`, `binary_little_endian` or `binary_big_endian`: the `vertex`
 /// element's x, y, z (and texture coordinates s, t / u, v / texture_u, texture_v, kept as the

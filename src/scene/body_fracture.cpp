@@ -39,6 +39,7 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   auto mesh = std::make_shared<const TetMesh>(mesher ? mesher(request.surface, mesh_options)
                                                      : tetrahedralize(request.surface, mesh_options, nullptr, nullptr, cancel));
   out.tets = mesh->tet_count();
+  out.tets_asked = mesh_options.target_tets;
   out.seconds.meshing = seconds_since(clock);
   if (cancel) cancel->throw_if_cancelled();
 

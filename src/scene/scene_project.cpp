@@ -4,6 +4,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/base/json_error_text.hpp"
 #include "fissure/base/number_text.hpp"
+#include "fissure/fracture/fracture_params.hpp"
 #include "fissure/fracture/fracture_scenario.hpp"
 
 #include "json_fields.hpp"
@@ -121,7 +122,11 @@ SceneProject read_fields(const json& j) {
   }
   if (j.contains("age")) {
     const double age = finite_number(j["age"], "age");
-    if (age < 0.0 || age > 1e6) throw FieldError{"age is " + format_number(age) + ", not in 0..1e6"};
+    // The parameter table's range (a larger age would be refused by every body, one by one).
+    const ParameterInfo& row = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))];
+    if (age < row.min || age > row.max) {
+      throw FieldError{"age is " + format_number(age) + ", not in " + format_number(row.min) + ".." + format_number(row.max)};
+    }
     p.age = age;
   }
   if (j.contains("up")) {

@@ -333,6 +333,13 @@ TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   // An open surface: one triangle.
   write_file_atomically(path("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   expect_failure(test::run_command(fissure() + " fracture " + path("open.obj") + out), 3, path("open.obj"));
+  // A whole scene (slabs, a curb touching the road) read as one surface crosses itself: the
+  // message says what it likely is and which command breaks each object.
+  const std::string street = (test::source_dir() / "assets" / "scenes" / "street.glb").string();
+  expect_failure(test::run_command(fissure() + " fracture " + street + " --tets 500" + out), 3,
+                 "self-intersecting: 24 pairs of faces cross (a scene of several objects that touch? fissure scene fracture");
+  // Supports that hold every node: nothing can move (CHOLMOD used to say "out of memory?").
+  expect_failure(test::run_command(run + " --fix box:-1,1,-1,1,-1,1" + out), 3, "the supports fix every node");
   EXPECT_FALSE(fs::exists(path("never.json")));
 }
 

@@ -243,6 +243,10 @@ TEST(SceneCli, NoOutputLandsOnAnInputOrOnAnotherOutput) {
   const std::string before = read_file(street);
   const std::string run = fissure() + " scene fracture " + street + " --assign concrete=concrete --tets 300 ";
   const std::string d = dir.string() + "/";
+  // An OBJ scene whose library (lib.mtl) is what -o lib.obj would write beside it.
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 1 --rows 1 -o " + d + "lib.obj").exit_code, 0);
+  fs::rename(dir / "lib.obj", dir / "tiles.obj");
+  const std::string library = read_file(dir / "lib.mtl");
   const std::pair<std::string, std::string> cases[] = {
       {run + "--report " + street + " -o " + d + "a.glb", "--report " + street + " is the input scene"},
       {run + "-o " + d + "./street.glb", "-o " + d + "./street.glb is the input scene"},
@@ -251,6 +255,8 @@ TEST(SceneCli, NoOutputLandsOnAnInputOrOnAnotherOutput) {
       {run + "-o " + d + "b.glb --report " + d + "p.json --save-project " + d + "p.json", "--report " + d + "p.json and --save-project"},
       {run + "-o " + d + "c.obj --report " + d + "c.mtl", "-o " + d + "c.mtl and --report " + d + "c.mtl name the same file"},
       {run + "-o " + d + "sealed.glb", "sealed.glb: is read-only"},
+      {fissure() + " scene fracture " + d + "tiles.obj --assign concrete=concrete -o " + d + "lib.obj",
+       "-o " + d + "lib.mtl is the input scene's material library"},
       {fissure() + " scene merge " + street + " " + d + "other.glb -o " + street, "-o " + street + " is the input slice"},
   };
   for (const auto& [command, expected] : cases) {
@@ -262,8 +268,9 @@ TEST(SceneCli, NoOutputLandsOnAnInputOrOnAnotherOutput) {
   EXPECT_EQ(read_file(street), before);
   EXPECT_EQ(read_file(dir / "keep.glb"), "kept");
   EXPECT_EQ(read_file(dir / "sealed.glb"), "sealed");
+  EXPECT_EQ(read_file(dir / "lib.mtl"), library);
   EXPECT_TRUE(fs::is_symlink(dir / "alias.glb"));
-  for (const char* name : {"a.glb", "b.glb", "p.json", "c.obj", "c.mtl"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
+  for (const char* name : {"a.glb", "b.glb", "p.json", "c.obj", "c.mtl", "lib.obj"}) EXPECT_FALSE(fs::exists(dir / name)) << name;
 }
 
 // assets/scenes/ holds what `fissure scene demo` writes (scripts/make-demo-scenes.sh): a change
@@ -296,7 +303,7 @@ TEST(SceneCli, WrongFilesGetOneLine) {
   // each a command-line error naming the flag, before any file is read.
   const std::string run = fissure() + " scene fracture " + (dir / "none.glb").string() + " -o " + (dir / "x.glb").string();
   for (const std::string flags : {"--assign a=b --seed -5", "--assign a=b --seed 18446744073709551616", "--assign a=b --age nan",
-                                  "--assign a=b --unit nan", "--assign a=b --bodies 0/3", "--assign a"}) {
+                                  "--assign a=b --unit nan", "--assign a=b --bodies 0/3", "--assign a", "--assign a=b --age 20000"}) {
     const auto r = test::run_command(run + " " + flags);
     EXPECT_EQ(r.exit_code, 2) << flags << ": " << r.output;
     const std::string flag = flags.substr(flags.rfind("--"), flags.find(' ', flags.rfind("--")) - flags.rfind("--"));

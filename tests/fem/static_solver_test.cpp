@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <numeric>
 
 namespace fissure {
 namespace {
@@ -309,6 +310,23 @@ TEST(StaticSolver, FixedDofsOutsideTheMeshAreRefusedEverywhere) {
     expect_refused([&] { ModalBasis::compute(body, with_bad, options); }, "modal basis");
     EXPECT_THROW(DofMap(n, with_bad), InvalidInput);
   }
+}
+
+// Supports that fix every node leave nothing to solve for: CHOLMOD's analysis of the empty
+// system failed and the user read "Cholesky analysis failed (out of memory?)". One line instead,
+// naming what is wrong; one free dof is enough to pass the check.
+TEST(StaticSolver, SupportsFixingEveryNodeAreRefused) {
+  auto mesh = test::box_mesh({0, 0, 0}, {1, 0.2, 0.1}, 4, 1, 1);
+  std::vector<int> all(static_cast<std::size_t>(3 * mesh->node_count()));
+  std::iota(all.begin(), all.end(), 0);
+  try {
+    check_supports_for_mechanisms(*mesh, all);
+    ADD_FAILURE() << "every node fixed was accepted";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the supports fix every node"), std::string::npos) << e.what();
+  }
+  all.pop_back();
+  EXPECT_NO_THROW(check_supports_for_mechanisms(*mesh, all));
 }
 
 // Issue 8: when the whole load sat on fixed nodes, solve() returned early with a zero reaction.

@@ -50,7 +50,7 @@ inline std::string collada_street() {
   </library_nodes>
   <library_visual_scenes><visual_scene id="Scene" name="Scene">
     <node id="street" name="street"><translate>100 0 0</translate>
-      <node id="slab_a" name="slab_a"><translate>0 0 200</translate>
+      <node id="n_slab_a" name="slab_a"><translate>0 0 200</translate>
         <instance_geometry url="#Slab"><bind_material><technique_common><instance_material symbol="m" target="#concrete-mat"/></technique_common></bind_material></instance_geometry></node>
       <node id="slab_b" name="slab_b"><rotate>0 0 1 90</rotate>
         <instance_geometry url="#Slab"><bind_material><technique_common><instance_material symbol="m" target="#glass-mat"/></technique_common></bind_material></instance_geometry></node>

@@ -320,7 +320,12 @@ TEST(ImportFuzz, FissureReadersNeverCrash) {
       {"binary PLY (LE)", test::to_ply_binary(polygons, false), true, dir / "le.ply", dir / "le.ply"},
       {"binary PLY (BE)", test::to_ply_binary(polygons, true), true, dir / "be.ply", dir / "be.ply"},
       {"ASCII STL", test::to_stl(triangles), false, dir / "f.stl", dir / "f.stl"},
-      {"binary STL", test::to_stl_binary(triangles), true, dir / "b.stl", dir / "b.stl"}};
+      {"binary STL", test::to_stl_binary(triangles), true, dir / "b.stl", dir / "b.stl"},
+      // The textured OBJ's material library, corrupted beside an intact OBJ.
+      {"MTL", "newmtl grout\nKd 0.5 0.5 0.45\nmap_Kd grout.png\nnewmtl stone\nKa 0 0 0\nKd 0.25 0.2 0.125\n", false,
+       dir / "m" / "solid.mtl", dir / "m" / "t.obj"}};
+  fs::create_directories(dir / "m");
+  test::write_test_file(dir / "m" / "t.obj", test::to_obj_textured(polygons));
   fuzz(corpora, 1000, 2026);
 }
 

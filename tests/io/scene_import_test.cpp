@@ -172,6 +172,27 @@ TEST(SceneImport, ObjObjectsAreNodesWithAMeshPerMaterial) {
   for (const SceneBody& b : scene_bodies(back)) paths.push_back(b.path);
   EXPECT_EQ(paths, (std::vector<std::string>{"/two/slab_a", "/two/slab_b"}));
 
+  // Parts under parts (a fractured scene: bodies, their fragments) keep their paths through OBJ:
+  // the object is named by its path, so two bodies' fragment_000 stay two bodies.
+  ExportScene nested;
+  nested.materials = two.materials;
+  nested.parts.push_back({});
+  nested.parts[0].name = "street";
+  for (const char* body : {"slab_a", "slab_b"}) {
+    ExportPart group;
+    group.name = body;
+    group.parent = 0;
+    nested.parts.push_back(group);
+    ExportPart fragment = two.parts[0];
+    fragment.name = "fragment_000";
+    fragment.parent = static_cast<int>(nested.parts.size()) - 1;
+    nested.parts.push_back(fragment);
+  }
+  write_scene(dir / "nested.obj", nested);
+  paths.clear();
+  for (const SceneBody& b : scene_bodies(import_scene(dir / "nested.obj"))) paths.push_back(b.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{"/nested/street/slab_a/fragment_000", "/nested/street/slab_b/fragment_000"}));
+
   // One named object, as Blender writes a lone cube: the name is kept under the file's root;
   // with no name, the file is the one node.
   test::write_test_file(dir / "nameless.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n");
@@ -183,6 +204,44 @@ TEST(SceneImport, ObjObjectsAreNodesWithAMeshPerMaterial) {
   ASSERT_EQ(scene_bodies(lone).size(), 1u);
   EXPECT_EQ(scene_bodies(lone)[0].path, "/lone/Pillar");
   EXPECT_EQ(lone.meshes[0].name, "Pillar");
+}
+
+// An OBJ's materials take their colours and textures from the MTL files its mtllib lines name
+// (assimp did; Fissure's reader ignored them, and every material came out grey). A missing
+// library is a warning; a corrupt one an error naming the OBJ, the library and the line.
+TEST(SceneImport, ObjMaterialsTakeTheirColoursFromTheirLibrary) {
+  const fs::path dir = test::fresh_temp_dir("scene-import-mtl");
+  const std::string obj = "mtllib look.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl stone\nf 1 3 2\nf 1 2 4\n"
+                          "usemtl moss\nf 1 4 3\nf 2 3 4\n";
+  test::write_test_file(dir / "rock.obj", obj);
+  test::write_test_file(dir / "look.mtl", "# two\nnewmtl stone\nKa 0 0 0\nKd 0.55 0.45 0.12\nnewmtl moss\nKd 0.1 0.5 0.2\n"
+                                          "map_Kd -s 1 1 1 textures/moss.png\n");
+  const ImportedScene scene = import_scene(dir / "rock.obj");
+  ASSERT_EQ(scene.materials.size(), 2u);
+  EXPECT_EQ(scene.materials[0].name, "stone");
+  EXPECT_EQ(scene.materials[0].colour, Eigen::Vector3d(0.55, 0.45, 0.12));
+  EXPECT_TRUE(scene.materials[0].textures.empty());
+  EXPECT_EQ(scene.materials[1].colour, Eigen::Vector3d(0.1, 0.5, 0.2));
+  EXPECT_EQ(scene.materials[1].textures, (std::vector<std::string>{"textures/moss.png"}));
+  EXPECT_TRUE(scene.warnings.empty());
+  EXPECT_EQ(scene_input_files(dir / "rock.obj"), (std::vector<fs::path>{dir / "rock.obj", dir / "look.mtl"}));
+
+  fs::remove(dir / "look.mtl");
+  const ImportedScene grey = import_scene(dir / "rock.obj");
+  EXPECT_EQ(grey.materials[0].colour, Eigen::Vector3d(0.62, 0.60, 0.56));
+  ASSERT_EQ(grey.warnings.size(), 1u);
+  EXPECT_NE(grey.warnings[0].find("look.mtl is not beside it"), std::string::npos) << grey.warnings[0];
+  EXPECT_EQ(scene_input_files(dir / "rock.obj"), (std::vector<fs::path>{dir / "rock.obj"}));
+
+  test::write_test_file(dir / "look.mtl", "newmtl stone\nKd 0.5 green 0.1\n");
+  try {
+    (void)import_scene(dir / "rock.obj");
+    ADD_FAILURE() << "a corrupt library was read";
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind((dir / "rock.obj").string() + ": its material library " + (dir / "look.mtl").string() + ":2: ", 0), 0u)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("green"), std::string::npos) << e.what();
+  }
 }
 
 // COLLADA's conventions: Z up and the file's unit, converted by assimp at the root node so the
@@ -197,6 +256,7 @@ TEST(SceneImport, ColladaFollowsItsUpAxisAndUnit) {
   EXPECT_EQ(scene.up, Eigen::Vector3d::UnitY()) << "assimp turns Z_UP into +y at the root";
   std::vector<std::string> paths;
   for (const SceneNode& n : scene.nodes) paths.push_back(n.path);
+  // Nodes by their name, as a modeller shows them: slab_a's id is n_slab_a (assimp's choice).
   EXPECT_EQ(paths, (std::vector<std::string>{"/Scene", "/Scene/street", "/Scene/street/slab_a", "/Scene/street/slab_b",
                                              "/Scene/street/kerbs", "/Scene/street/kerbs/kerb"}));
   const std::vector<SceneBody> bodies = scene_bodies(scene);

@@ -394,6 +394,22 @@ TEST(SceneFracture, WhatWasAskedButNotGivenIsNoted) {
   EXPECT_NE(run.notes[0].find("/street/sidewalk/slab_02: meshed with " + std::to_string(tets) + " tets, not the 60 asked for"),
             std::string::npos) << run.notes[0];
   EXPECT_NE(run.notes[1].find("/street/sidewalk/slab_02: no crack separated a piece"), std::string::npos) << run.notes[1];
+
+  // With no --tets the default stands for it: a body meshed with far more (the 4 mm bathroom
+  // mirror took 92K for 6000) is noted too. A mesher asked for the default that makes 1.7x as
+  // many stands in for the thin body.
+  SceneFractureOptions by_default;
+  by_default.age = 1e-9;
+  by_default.assignments.by_path["/street/sidewalk/slab_02"] = "ceramic-tile";
+  by_default.mesher = [](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
+    EXPECT_EQ(o.target_tets, kDefaultBodyTets);
+    TetrahedralizeOptions more = o;
+    more.target_tets = o.target_tets * 17 / 10;
+    return tetrahedralize(surface, more);
+  };
+  const SceneFracture thin = fracture_scene(scene, by_default);
+  ASSERT_FALSE(thin.notes.empty());
+  EXPECT_NE(thin.notes[0].find("tets, not the " + std::to_string(kDefaultBodyTets) + " of the default"), std::string::npos) << thin.notes[0];
 }
 
 // An assignment that matches nothing is a warning and the rest runs; a fracture material that

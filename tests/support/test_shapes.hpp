@@ -149,12 +149,13 @@ inline SurfaceMesh basin(double length = 0.5, double width = 0.4, double depth =
   return s;
 }
 
-/// Writes `surface` as a Wavefront OBJ (what a user exports from a modeller).
+/// Writes `surface` as a Wavefront OBJ (what a user exports from a modeller), as Blender writes
+/// its Z-up models to OBJ, which is Y up: (x, y, z) → (x, z, −y), a rotation.
 inline void write_obj(const SurfaceMesh& surface, const std::string& path) {
   std::ofstream out(path);
   out.precision(17);
   for (Eigen::Index v = 0; v < surface.vertex_count(); ++v) {
-    out << "v " << surface.vertices(v, 0) << ' ' << surface.vertices(v, 1) << ' ' << surface.vertices(v, 2) << '\n';
+    out << "v " << surface.vertices(v, 0) << ' ' << surface.vertices(v, 2) << ' ' << -surface.vertices(v, 1) << '\n';
   }
   for (Eigen::Index f = 0; f < surface.face_count(); ++f) {
     out << "f " << surface.faces(f, 0) + 1 << ' ' << surface.faces(f, 1) + 1 << ' ' << surface.faces(f, 2) + 1 << '\n';

@@ -52,6 +52,9 @@ struct ImportedScene {
   std::vector<SceneNode> nodes; ///< parents before children; nodes[0] is the root
   std::vector<SceneMesh> meshes;
   std::vector<SceneMaterial> materials;
+  /// What was read but could not be used whole (an OBJ's missing material library), for the
+  /// commands to print; the scene is still valid.
+  std::vector<std::string> warnings;
 };
 
 /// One node instance of its meshes (one surface, each part with its material).
@@ -65,6 +68,10 @@ struct SceneBody {
 /// Reads `path`. Throws IoError naming the file when it is missing, corrupt or of a format not
 /// listed above, and InvalidInput when it holds no triangles (the messages of import_surface()).
 ImportedScene import_scene(const std::filesystem::path& path);
+
+/// The files import_scene(path) reads: `path`, and for an OBJ the material libraries its
+/// mtllib lines name that exist beside it, so a command can refuse to write over any of them.
+std::vector<std::filesystem::path> scene_input_files(const std::filesystem::path& path);
 
 /// Every body of the scene (every node holding a mesh), in node order.
 std::vector<SceneBody> scene_bodies(const ImportedScene& scene);

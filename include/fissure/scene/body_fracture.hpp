@@ -72,6 +72,7 @@ struct BodyFieldCache {
 struct BodyFracture {
   FractureParams params;               ///< as simulated (drawn, scaled, age set)
   int tets = 0;
+  int tets_asked = 0;                  ///< the request's target_tets, or the default it stood for
   std::vector<LoadSpec> loads;         ///< as applied, with their forces
   double length_scale = 1.0;           ///< a fitted material's (fitted_transfer.hpp); 1 otherwise
   bool posterior_draw = false;         ///< the five fitted parameters were drawn from a posterior
