@@ -11,6 +11,7 @@ namespace fissure {
 std::string format_number(double value, int significant_digits) {
   if (std::isnan(value)) return "nan";
   if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  if (value == 0.0) return "0";  // not "-0" (a negated zero force component in a load spec)
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.*g", significant_digits < 1 ? 1 : significant_digits, value);
   return buffer;

@@ -97,7 +97,8 @@ void register_analyze(CLI::App& app, Action& action) {
   cmd->add_option("IMAGE", args->image, "Traced cracks: PNG, JPEG, TIFF or BMP, lines of either polarity")->required();
   cmd->add_option("--json", args->json, "Write the statistics as JSON (input of fissure compare); - for stdout");
   cmd->add_option("--overlay", args->overlay, "Write a PNG showing fragments, skeleton, junctions (T red, Y blue, X magenta) "
-                                              "and ends (free yellow, border green)");
+                                              "and ends (free yellow, border green)")
+      ->check(png_path());
   cmd->add_option("--polarity", args->polarity, "Crack colour: auto (the minority class), light or dark")
       ->check(CLI::IsMember({"auto", "light", "dark"}))
       ->default_val("auto");

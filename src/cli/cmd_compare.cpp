@@ -1,6 +1,7 @@
 // fissure compare A B: the paper's Eq. 5 between two patterns (images or stats JSON files).
 
 #include "cli_common.hpp"
+#include "option_checks.hpp"
 #include "image_options.hpp"
 #include "command_table.hpp"
 #include "commands.hpp"
@@ -92,7 +93,7 @@ void register_compare(CLI::App& app, Action& action) {
   cmd->add_option("A", args->a, "Traced image or statistics JSON (from fissure analyze --json)")->required();
   cmd->add_option("B", args->b, "Traced image or statistics JSON")->required();
   cmd->add_option("--weights", args->weights, "Weights of the fragment, crack and junction terms")->default_val("3,1,1");
-  cmd->add_option("--report", args->report, "Also draw both patterns and their three histograms overlaid into this PNG");
+  cmd->add_option("--report", args->report, "Also draw both patterns and their three histograms overlaid into this PNG")->check(png_path());
   add_max_megapixels_option(*cmd, args->max_megapixels);
   cmd->add_flag("--json", args->json, "Print the result as JSON");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr");

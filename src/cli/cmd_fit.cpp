@@ -311,7 +311,7 @@ void register_fit(CLI::App& app, Action& action) {
   cmd->add_option("--name", args->name, "Name of the fitted material (default: the image's file name without extension)");
   cmd->add_option("-o,--output", args->output, "Fitted material file (with --shard: the shard's result); required");
   cmd->add_option("--checkpoint", args->checkpoint, "Checkpoint file (default: OUTPUT.checkpoint; removed on success)");
-  cmd->add_option("--report", args->report, "Also draw the exemplar beside a fitted pattern, their histograms overlaid (PNG)");
+  cmd->add_option("--report", args->report, "Also draw the exemplar beside a fitted pattern, their histograms overlaid (PNG)")->check(png_path());
   cmd->add_flag("--resume", args->resume, "Go on from the checkpoint of an interrupted run of the same command");
   cmd->add_option("--shard", args->shard, "Run slice K of N of the trials (paper method; join with fissure fit merge)");
   add_max_megapixels_option(*cmd, args->max_megapixels);
@@ -323,7 +323,7 @@ void register_fit(CLI::App& app, Action& action) {
   merge->add_option("SHARD", merge_args->shards, "Shard files written by fissure fit --shard K/N")->required();
   merge->add_option("-o,--output", merge_args->output, "Fitted material file")->required();
   merge->add_option("--image", merge_args->image, "The exemplar image (for --report: the shards keep only its statistics)");
-  merge->add_option("--report", merge_args->report, "Also draw the exemplar beside a fitted pattern (PNG; needs --image)");
+  merge->add_option("--report", merge_args->report, "Also draw the exemplar beside a fitted pattern (PNG; needs --image)")->check(png_path());
   merge->add_flag("-q,--quiet", merge_args->quiet, "No progress on stderr");
   merge->callback([&action, merge_args] { action = [merge_args] { return run_merge_command(*merge_args); }; });
 

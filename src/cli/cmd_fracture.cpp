@@ -395,7 +395,7 @@ void register_fracture(CLI::App& app, Action& action) {
       ->check(count_in(10, 5e7));
   cmd->add_option("-o,--output", args->output,
                   "Write the fragments as closed meshes, one object each: .glb, .gltf, .obj (+ .mtl) or .ply");
-  cmd->add_option("--pattern", args->pattern, "Write the visible crack pattern as a line drawing (PNG)");
+  cmd->add_option("--pattern", args->pattern, "Write the visible crack pattern as a line drawing (PNG)")->check(png_path());
   cmd->add_option("--pattern-size", args->pattern_size, "Long side of the pattern drawing, pixels")
       ->type_name("INT")
       ->default_val(1024)

@@ -432,6 +432,7 @@ struct SceneDemoArgs {
   std::string output;
   int slabs_along = DemoStreetOptions{}.slabs_along;
   int slabs_across = DemoStreetOptions{}.slabs_across;
+  bool street_shape_given = false;  ///< --slabs or --rows given (the bathroom takes neither)
 };
 
 int run_scene_demo(const SceneDemoArgs& args) {
@@ -442,6 +443,7 @@ int run_scene_demo(const SceneDemoArgs& args) {
     o.slabs_across = args.slabs_across;
     scene = demo_street(o);
   } else if (args.which == "bathroom") {
+    if (args.street_shape_given) throw InvalidInput("scene demo bathroom: --slabs and --rows shape the street; the bathroom takes neither");
     scene = demo_bathroom();
   } else {
     throw InvalidInput("scene demo " + args.which + ": the demos are street and bathroom");
@@ -515,7 +517,10 @@ void register_scene(CLI::App& app, Action& action) {
   demo->add_option("--slabs", demo_args->slabs_along, "Street: slabs along the kerb")->check(CLI::Range(1, 1000));
   demo->add_option("--rows", demo_args->slabs_across, "Street: rows of slabs")->check(CLI::Range(1, 100));
   demo->add_option("-o,--output", demo_args->output, "Output: .glb, .gltf, .obj or .ply")->required();
-  demo->callback([&action, demo_args] { action = [demo_args] { return run_scene_demo(*demo_args); }; });
+  demo->callback([&action, demo, demo_args] {
+    demo_args->street_shape_given = demo->count("--slabs") + demo->count("--rows") > 0;
+    action = [demo_args] { return run_scene_demo(*demo_args); };
+  });
 }
 
 }  // namespace fissure::cli

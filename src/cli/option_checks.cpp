@@ -3,7 +3,9 @@
 #include "fissure/base/error.hpp"
 #include "fissure/base/number_text.hpp"
 
+#include <cctype>
 #include <charconv>
+#include <filesystem>
 #include <cmath>
 #include <cstdint>
 
@@ -70,6 +72,17 @@ CLI::Validator seed_value() {
         return {};
       },
       "SEED in [0, 2^64-1]");
+}
+
+CLI::Validator png_path() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::string ext = std::filesystem::path(text).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext.empty() || ext == ".png") return {};
+        return text + ": the image is written as PNG; name it .png";
+      },
+      "PNG");
 }
 
 }  // namespace fissure::cli

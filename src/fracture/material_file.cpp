@@ -331,8 +331,10 @@ std::filesystem::path find_material(const std::string& name_or_path) {
   }
   std::string list;
   for (const std::string& name : bundled_material_names()) list += (list.empty() ? "" : ", ") + name;
-  throw InvalidInput(material_context(name_or_path) + " is not a file or a bundled material (bundled: " +
-                     (list.empty() ? std::string("none found") : list) + ")");
+  // The names listed are the bundled ones and the user library's (material_directories()).
+  throw InvalidInput(material_context(name_or_path) + " is not a file or a known material (known: " +
+                     (list.empty() ? std::string("none found") : list) +
+                     "; your own go in $XDG_DATA_HOME/fissure/materials)");
 }
 
 }  // namespace fissure

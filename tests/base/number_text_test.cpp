@@ -14,6 +14,7 @@ TEST(NumberText, FormatsSignificantDigits) {
   EXPECT_EQ(format_number(1e-7), "1e-07");
   EXPECT_EQ(format_number(-1.25e-18), "-1.25e-18");
   EXPECT_EQ(format_number(0.05), "0.05");
+  EXPECT_EQ(format_number(-0.0), "0");  // a negated zero (a load force's x) reads as 0
   EXPECT_EQ(format_number(3e10), "3e+10");
   EXPECT_EQ(format_number(24000), "24000");
   EXPECT_EQ(format_number(1.0 / 3.0, 3), "0.333");

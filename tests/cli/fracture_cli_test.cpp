@@ -330,6 +330,8 @@ TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   fs::create_directory(path("folder.glb"));
   expect_failure(test::run_command(run + " -o " + path("folder.glb") + out), 4, path("folder.glb"));
   expect_failure(test::run_command(run + " -o -" + out), 3, "only --stats may be -");
+  expect_failure(test::run_command(run + " --pattern " + path("p.jpg") + out), 2,
+                 "--pattern: " + path("p.jpg") + ": the image is written as PNG; name it .png");
   // An open surface: one triangle.
   write_file_atomically(path("open.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   expect_failure(test::run_command(fissure() + " fracture " + path("open.obj") + out), 3, path("open.obj"));

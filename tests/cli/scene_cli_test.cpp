@@ -299,6 +299,10 @@ TEST(SceneCli, WrongFilesGetOneLine) {
   EXPECT_EQ(std::count(other.output.begin(), other.output.end(), '\n'), 1) << other.output;
   const auto bare = test::run_command(fissure() + " scene");
   EXPECT_EQ(bare.exit_code, 2) << bare.output;
+  const auto shaped = test::run_command(fissure() + " scene demo bathroom --slabs 3 -o " + (dir / "b.glb").string());
+  EXPECT_EQ(shaped.exit_code, 3) << shaped.output;
+  EXPECT_NE(shaped.output.find("--slabs and --rows shape the street"), std::string::npos) << shaped.output;
+  EXPECT_FALSE(fs::exists(dir / "b.glb"));
   // Flag values CLI11 used to let through (a wrapped seed, NaN) or that were found only later:
   // each a command-line error naming the flag, before any file is read.
   const std::string run = fissure() + " scene fracture " + (dir / "none.glb").string() + " -o " + (dir / "x.glb").string();

@@ -454,7 +454,7 @@ TEST(BundledMaterials, FoundByNameOrPath) {
       find_material(unknown);
       ADD_FAILURE() << "found " << unknown;
     } catch (const InvalidInput& e) {
-      EXPECT_NE(std::string(e.what()).find(" is not a file or a bundled material (bundled: asphalt, ceramic-tile, "
+      EXPECT_NE(std::string(e.what()).find(" is not a file or a known material (known: asphalt, ceramic-tile, "
                                            "concrete, glass, plaster"),
                 std::string::npos)
           << e.what();
