@@ -28,6 +28,7 @@
 #include "fissure/io/gltf_reader.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
+#include "fissure/scene/crack_texture.hpp"
 #include "fissure/scene/demo_scenes.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 #include "fissure/scene/scene_fracture.hpp"
@@ -190,6 +191,8 @@ struct SceneFractureArgs {
   bool no_cache = false;
   std::string cache_dir;
   std::string report;
+  std::string crack_masks;
+  double crack_mask_size = 0;  // 0: the project's, else CrackTextureOptions' default
   std::string output;
   bool quiet = false;
 };
@@ -245,7 +248,7 @@ CLI::Validator parsed_by(std::function<void(const std::string&)> parse) {
 }
 
 nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& scene, const std::string& output,
-                                   std::uint64_t seed, double seconds) {
+                                   std::uint64_t seed, double seconds, const std::map<std::string, std::string>& crack_masks) {
   nlohmann::ordered_json bodies = nlohmann::ordered_json::array();
   for (const SceneBodyReport& r : run.reports) {
     nlohmann::ordered_json b = {{"path", r.path}, {"status", status_name(r.status)}};
@@ -261,6 +264,7 @@ nlohmann::ordered_json report_json(const SceneFracture& run, const std::string& 
       b["stress"] = r.stress_cached ? "cached" : "solved";
       b["up"] = up_axis_name(r.up);
       b["loads"] = r.loads;
+      if (const auto mask = crack_masks.find(r.path); mask != crack_masks.end()) b["crack_mask"] = mask->second;
       b["seconds"] = {{"meshing", r.seconds.meshing},
                       {"preparation", r.seconds.preparation},
                       {"simulation", r.seconds.simulation},
@@ -279,6 +283,7 @@ struct SceneFractureRun {
   std::string scene;                 // the scene file to read
   SceneFractureOptions options;
   std::string output, report;
+  std::string crack_masks;           // the folder of crack textures, or empty
   SceneProject project;              // what --save-project writes
 };
 
@@ -292,6 +297,7 @@ SceneFractureRun scene_fracture_run(const SceneFractureArgs& args) {
     run.scene = project_path(base, project.scene).string();
     if (!project.output.empty()) run.output = project_path(base, project.output).string();
     if (!project.report.empty()) run.report = project_path(base, project.report).string();
+    if (!project.crack_masks.empty()) run.crack_masks = project_path(base, project.crack_masks).string();
   } else {
     project.scene = args.scene;
     run.scene = args.scene;
@@ -308,6 +314,8 @@ SceneFractureRun scene_fracture_run(const SceneFractureArgs& args) {
   if (args.strict) project.strict = true;
   if (!args.output.empty()) run.output = args.output;
   if (!args.report.empty()) run.report = args.report;
+  if (!args.crack_masks.empty()) run.crack_masks = args.crack_masks;
+  if (args.crack_mask_size > 0) project.crack_mask_size = static_cast<int>(std::lround(args.crack_mask_size));
   if (run.output.empty())
     throw InvalidInput("no output: give -o OUT.glb" + std::string(base.empty() ? "" : " or \"export\": {\"output\": …} in " + args.scene));
   run.options = scene_fracture_options(project, args.scene);
@@ -328,6 +336,7 @@ SceneProject project_to_save(SceneProject project, const SceneFractureRun& run, 
   project.scene = relative(run.scene);
   project.output = relative(run.output);
   project.report = relative(run.report);
+  project.crack_masks = relative(run.crack_masks);
   return project;
 }
 
@@ -335,6 +344,11 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   SceneFractureRun setup = scene_fracture_run(args);
   check_scene_output_path(setup.output);
   if (!setup.report.empty()) check_output_path(setup.report);
+  if (!setup.crack_masks.empty()) {
+    std::error_code ec;
+    if (!fs::is_directory(setup.crack_masks, ec)) throw IoError("--crack-masks " + setup.crack_masks + ": not a directory");
+    check_output_path(fs::path(setup.crack_masks) / "crack-mask.png");  // writable
+  }
   {
     // No output may land on the scene or on another output; --save-project may rewrite the
     // project being run (it gains the command line's settings), nothing else.
@@ -393,14 +407,39 @@ int run_scene_fracture(const SceneFractureArgs& args) {
       std::cerr << "fissure scene fracture: warning: " << r.path << " skipped: " << r.reason << '\n';
     }
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!setup.report.empty()) write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds).dump(2) + "\n");
+  const auto write_report = [&](const std::map<std::string, std::string>& crack_masks) {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (!setup.report.empty()) {
+      write_file_atomically(setup.report, report_json(run, setup.scene, setup.output, options.seed, seconds, crack_masks).dump(2) + "\n");
+    }
+  };
   if (setup.project.strict && (skipped > 0 || !run.warnings.empty())) {
+    write_report({});
     throw InvalidInput("--strict: " + counted(skipped, "body", "bodies") + " skipped, " +
                        counted(static_cast<long long>(run.warnings.size()), "warning", "warnings") + " (see above); nothing written to " +
                        setup.output);
   }
   write_scene(setup.output, out);
+  // Crack textures, after the scene (a failed run writes none), one body at a time.
+  std::map<std::string, std::string> crack_masks;  // body path → file written
+  if (!setup.crack_masks.empty()) {
+    CrackTextureOptions texture;
+    if (setup.project.crack_mask_size > 0) texture.size = setup.project.crack_mask_size;
+    for (std::size_t b = 0; b < run.results.size(); ++b) {
+      if (!run.results[b]) continue;
+      const std::string& path = run.reports[b].path;
+      const GreyImage image = crack_texture(run.results[b]->fracture.fragments, run.results[b]->appearance, texture);
+      if (image.width == 0) {
+        if (!args.quiet) std::cerr << "fissure scene fracture: note: " << path << ": no texture coordinates, so no crack mask\n";
+        continue;
+      }
+      const fs::path file = fs::path(setup.crack_masks) / crack_texture_file_name(path);
+      write_grey_png(file, image);
+      crack_masks[path] = file.string();
+    }
+  }
+  write_report(crack_masks);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) {
     // A body that stayed whole was simulated but did not break: said apart, as its note says.
     const std::string stayed = whole == 0 ? "" : " (" + std::to_string(whole) + " stayed whole)";
@@ -494,6 +533,12 @@ void register_scene(CLI::App& app, Action& action) {
                        "Where tet meshes are cached by content (default: $FISSURE_CACHE_DIR, else $XDG_CACHE_HOME/fissure, "
                        "else ~/.cache/fissure; capped at $FISSURE_CACHE_MAX_MB, default 4096)");
   fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
+  fracture->add_option("--crack-masks", fr->crack_masks,
+                       "Also draw each fractured body's cracks in its texture (UV) space, for decals: DIR/<body path>.png, "
+                       "white on black");
+  fracture->add_option("--crack-mask-size", fr->crack_mask_size, "The crack masks' side in pixels (default 1024)")
+      ->type_name("INT")
+      ->check(count_in(16, 16384));
   fracture->add_option("--save-project", fr->save_project,
                        "Write the run's settings as a project (.json) before running: fissure scene fracture PROJECT "
                        "repeats the run (the project being run may be named: it is updated with this run's options)");

@@ -179,9 +179,16 @@ SceneProject read_fields(const json& j) {
   if (j.contains("export")) {
     const json& e = j["export"];
     if (!e.is_object()) throw FieldError{"export is " + type_of(e) + ", not an object"};
-    refuse_unknown_keys(e, "export.", {"output", "report"});
+    refuse_unknown_keys(e, "export.", {"output", "report", "crack_masks", "crack_mask_size"});
     if (e.contains("output")) p.output = string_field(e["output"], "export.output");
     if (e.contains("report")) p.report = string_field(e["report"], "export.report");
+    if (e.contains("crack_masks")) p.crack_masks = string_field(e["crack_masks"], "export.crack_masks");
+    if (e.contains("crack_mask_size")) {
+      const json& size = e["crack_mask_size"];
+      if (!size.is_number_unsigned() || size.get<std::uint64_t>() < 16 || size.get<std::uint64_t>() > 16384)
+        throw FieldError{"export.crack_mask_size is " + size.dump() + ", not a count of pixels in 16..16384"};
+      p.crack_mask_size = static_cast<int>(size.get<std::uint64_t>());
+    }
   }
   return p;
 }
@@ -252,6 +259,8 @@ std::string scene_project_to_json(const SceneProject& p) {
   nlohmann::ordered_json e = nlohmann::ordered_json::object();
   if (!p.output.empty()) e["output"] = p.output;
   if (!p.report.empty()) e["report"] = p.report;
+  if (!p.crack_masks.empty()) e["crack_masks"] = p.crack_masks;
+  if (p.crack_mask_size > 0) e["crack_mask_size"] = p.crack_mask_size;
   if (!e.empty()) j["export"] = e;
   // nlohmann writes doubles in their shortest round-trip form: reading gives the same bits.
   return j.dump(2) + "\n";

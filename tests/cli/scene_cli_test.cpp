@@ -3,6 +3,7 @@
 // one and says why not the other; wrong files get one line.
 
 #include "fissure/base/atomic_file.hpp"
+#include "fissure/exemplar/crack_image.hpp"
 #include "fissure/io/scene_export.hpp"
 
 #include "test_support.hpp"
@@ -159,6 +160,48 @@ TEST(SceneCli, AWarmCacheMeshesAndSolvesNothingAndChangesNoByte) {
     EXPECT_EQ(count, 1u) << kind << ": " << blocked.output;
   }
   EXPECT_TRUE(read_file(dir / "cold.glb") == read_file(dir / "blocked.glb"));
+}
+
+// Crack masks for decals: one PNG per fractured body in its UV space, named by its path, listed
+// in the report and kept by a saved project; a folder that is not there is refused before any work.
+TEST(SceneCli, CrackMasksAreDrawnPerFracturedBody) {
+  const fs::path dir = test::fresh_temp_dir("scene-cli-masks");
+  const std::string street = (dir / "street.glb").string();
+  ASSERT_EQ(test::run_command(fissure() + " scene demo street --slabs 2 --rows 1 -o " + street).exit_code, 0);
+  const std::string run = fissure() + " scene fracture " + street + " --assign /street/sidewalk=concrete --age 50 --tets 1500 -q";
+  const auto missing = test::run_command(run + " --crack-masks " + (dir / "none").string() + " -o " + (dir / "m.glb").string());
+  EXPECT_EQ(missing.exit_code, 4) << missing.output;
+  EXPECT_NE(missing.output.find("--crack-masks " + (dir / "none").string() + ": not a directory"), std::string::npos) << missing.output;
+  EXPECT_FALSE(fs::exists(dir / "m.glb"));
+
+  fs::create_directory(dir / "masks");
+  const auto r = test::run_command(run + " --crack-masks " + (dir / "masks").string() + " --crack-mask-size 256 --report " +
+                                   (dir / "r.json").string() + " --save-project " + (dir / "p.json").string() + " -o " +
+                                   (dir / "m.glb").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json report = nlohmann::json::parse(read_file(dir / "r.json"));
+  int masks = 0;
+  for (const auto& b : report["bodies"]) {
+    if (b["status"] != "fractured") {
+      EXPECT_FALSE(b.contains("crack_mask")) << b.dump();
+      continue;
+    }
+    const fs::path file = b.at("crack_mask").get<std::string>();
+    std::string expected = b["path"].get<std::string>().substr(1);  // "street/sidewalk/slab_01"
+    std::replace(expected.begin(), expected.end(), '/', '_');
+    EXPECT_EQ(file.filename().string(), expected + ".png");
+    const GreyImage image = load_grey_image(file, 1 << 20);
+    EXPECT_EQ(image.width, 256);
+    // A broken slab's mask holds its cracks: some lit pixels, most dark.
+    const auto lit = std::count_if(image.pixels.begin(), image.pixels.end(), [](std::uint8_t p) { return p > 128; });
+    if (b["fragments"].get<int>() > 1) EXPECT_GT(lit, 50) << file;
+    EXPECT_LT(lit, static_cast<long>(image.pixels.size() / 4)) << file;
+    ++masks;
+  }
+  EXPECT_EQ(masks, 2);
+  const nlohmann::json project = nlohmann::json::parse(read_file(dir / "p.json"));
+  EXPECT_EQ(project["export"]["crack_masks"], "masks");
+  EXPECT_EQ(project["export"]["crack_mask_size"], 256);
 }
 
 // A project saved by one run repeats it: the same bytes from `scene fracture PROJECT`, its paths

@@ -61,6 +61,8 @@ struct SceneProject {
   std::map<std::string, SceneBodySetupEntry> bodies;  ///< by body path
   std::string output;                  ///< export: the scene with its fragments, as written
   std::string report;                  ///< export: the per-body report, as written (empty: none)
+  std::string crack_masks;             ///< export: the folder of crack textures (crack_texture.hpp; empty: none)
+  int crack_mask_size = 0;             ///< export: their side in pixels (0: CrackTextureOptions' default)
 };
 
 /// Reads a project file. Throws IoError naming the file for a missing, unreadable or malformed
