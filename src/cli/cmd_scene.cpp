@@ -14,6 +14,7 @@
 #include "command_table.hpp"
 #include "commands.hpp"
 #include "interruption.hpp"
+#include "memory_estimate.hpp"
 #include "option_checks.hpp"
 #include "terminal_progress.hpp"
 
@@ -21,11 +22,13 @@
 #include "fissure/base/disk_cache.hpp"
 #include "fissure/base/distinct_files.hpp"
 #include "fissure/base/error.hpp"
+#include "fissure/base/memory.hpp"
 #include "fissure/base/number_text.hpp"
 #include "fissure/base/thread_count.hpp"
 #include "fissure/fracture/fracture_params.hpp"
 #include "fissure/fracture/fracture_scenario.hpp"
 #include "fissure/io/gltf_reader.hpp"
+#include "fissure/mesh/tetrahedralize.hpp"
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 #include "fissure/scene/crack_texture.hpp"
@@ -191,6 +194,7 @@ struct SceneFractureArgs {
   bool no_cache = false;
   std::string cache_dir;
   std::string report;
+  bool allow_large = false;
   std::string crack_masks;
   double crack_mask_size = 0;  // 0: the project's, else CrackTextureOptions' default
   std::string output;
@@ -360,6 +364,13 @@ int run_scene_fracture(const SceneFractureArgs& args) {
     for (const fs::path& file : scene_input_files(setup.scene))
       inputs.push_back({inputs.empty() ? "the input scene" : "the input scene's material library", file.string()});
     check_distinct_files(inputs, outputs);
+  }
+  // A --tets no body could be meshed with is the run's error, before any work (each body was
+  // refused in turn and the run exited 0 with all of them skipped).
+  setup.options.memory_limit_bytes = memory_limit(args.allow_large);
+  if (setup.options.target_tets > 0) {
+    require_memory(tetrahedralize_memory_estimate(setup.options.target_tets), setup.options.memory_limit_bytes,
+                   "--tets " + std::to_string(setup.options.target_tets) + " per body");
   }
   if (!args.save_project.empty()) {
     if (!is_scene_project_file(args.save_project)) throw InvalidInput("--save-project " + args.save_project + ": a project file ends in .json");
@@ -533,6 +544,7 @@ void register_scene(CLI::App& app, Action& action) {
                        "Where tet meshes are cached by content (default: $FISSURE_CACHE_DIR, else $XDG_CACHE_HOME/fissure, "
                        "else ~/.cache/fissure; capped at $FISSURE_CACHE_MAX_MB, default 4096)");
   fracture->add_option("--report", fr->report, "Write a per-body report (JSON): fractured or skipped and why, seed, timings");
+  fracture->add_flag("--allow-large", fr->allow_large, "Try bodies whose estimated memory exceeds this machine's");
   fracture->add_option("--crack-masks", fr->crack_masks,
                        "Also draw each fractured body's cracks in its texture (UV) space, for decals: DIR/<body path>.png, "
                        "white on black");

@@ -36,6 +36,7 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   mesh_options.target_tets = request.target_tets > 0 ? request.target_tets
                              : fit && fit->body_tets > 0 ? fit->body_tets
                                                          : kDefaultBodyTets;
+  mesh_options.memory_limit_bytes = request.memory_limit_bytes;
   auto mesh = std::make_shared<const TetMesh>(mesher ? mesher(request.surface, mesh_options)
                                                      : tetrahedralize(request.surface, mesh_options, nullptr, nullptr, cancel));
   out.tets = mesh->tet_count();

@@ -201,6 +201,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       request.seed = report.seed;
       request.age = options.age;
       request.target_tets = options.target_tets;
+      request.memory_limit_bytes = options.memory_limit_bytes;
       if (setup != options.body_setups.end()) {
         request.patch_loads = setup->second.loads;
         request.supports = setup->second.supports;

@@ -2,7 +2,7 @@
 //
 // - BM_Street/slabs:S/cache:C: the street demo (S sidewalk slabs in two rows, a curb, a road; what
 //   assets/scenes/street.glb holds at S = 24) read from its GLB, every slab and the curb
-//   fractured with the bundled concrete at age 12 (scripts/demo.sh's run), the road left as it
+//   fractured with the bundled concrete at age 12 (the demo's age until 2026-12-07; 50 since), the road left as it
 //   is, the scene exported and encoded as GLB in memory. On FISSURE_THREADS threads, bodies in
 //   parallel (scripts/bench.sh: one). Counters: `per_body_s` = the time over the fractured bodies;
 //   `meshing`, `preparation`, `simulation`, `fragments` = the shares of the bodies' summed

@@ -60,6 +60,9 @@ struct BodyFractureRequest {
   std::uint64_t seed = 1;
   std::optional<double> age;           ///< unset: the material's
   int target_tets = 0;                 ///< 0: a fitted material's fit body count, else 6000
+  /// A mesh whose estimated memory exceeds this is refused (TetrahedralizeOptions); 0: this
+  /// machine's physical memory.
+  std::uint64_t memory_limit_bytes = 0;
 };
 
 /// Where a body's static stress fields are cached (static_stress_cache.hpp, beside the tet meshes);

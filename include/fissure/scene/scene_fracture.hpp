@@ -58,6 +58,7 @@ struct SceneFractureOptions {
   /// (metres for glTF; assimp converts FBX). Loads and supports are given in scene units.
   double unit = 1.0;
   int target_tets = 0;                    ///< per body; 0: BodyFractureRequest's default
+  std::uint64_t memory_limit_bytes = 0;   ///< per body's mesh (BodyFractureRequest)
   int threads = 1;                        ///< bodies run in parallel, one thread each
   int slice = 1, slices = 1;              ///< K of N, K from 1
   Mesher mesher;                          ///< empty: tetrahedralize(), through the cache below
