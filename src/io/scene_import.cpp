@@ -216,7 +216,7 @@ ImportedScene import_simple(const fs::path& path, const std::string& format) {
 
 // OBJ: a node per object (`o NAME`, in the order of their first faces) under a root named after
 // the file, each holding one mesh per material its faces use (as assimp splits glTF and FBX
-// meshes), with per-vertex texture coordinates when the file has them. A file with no `o` or `g`
+// meshes), with per-vertex texture coordinates when the file has them. A file with no `o`
 // names is one node named after the file, as the other simple formats; a file of one named object
 // keeps the name (Blender writes `o Cube` for a lone cube: the body is /file/Cube). OBJ has no
 // hierarchy and no transforms: every node's transform is the identity.
