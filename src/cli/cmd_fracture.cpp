@@ -68,12 +68,6 @@ struct FractureArgs {
   bool allow_large = false;
 };
 
-std::string lower_extension(const std::string& input) {
-  std::string ext = std::filesystem::path(input).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
-
 // The up axis of the input's own convention: glTF, FBX, COLLADA and OBJ (as Blender writes it,
 // and as `fissure scene` reads it) are +Y up, the rest (tile:, .msh, STL, PLY, OFF) +Z.
 Eigen::Vector3d default_up(const std::string& input) {

@@ -528,7 +528,7 @@ void register_scene(CLI::App& app, Action& action) {
   auto* seed = fracture->add_option("--seed", fr->seed, "Project seed; each body's own seed derives from it and its path (default 1)")->check(seed_value());
   // The age's range is the parameter table's, as `fissure fracture --age` has it: an age past it
   // would be refused by every body, one at a time.
-  const ParameterInfo& age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))];
+  const ParameterInfo& age = fracture_parameter_info("age");
   fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(finite_in(age.min, age.max));
   fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")

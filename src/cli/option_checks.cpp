@@ -74,11 +74,16 @@ CLI::Validator seed_value() {
       "SEED in [0, 2^64-1]");
 }
 
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 CLI::Validator png_path() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        std::string ext = std::filesystem::path(text).extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        const std::string ext = lower_extension(text);
         if (ext.empty() || ext == ".png") return {};
         return text + ": the image is written as PNG; name it .png";
       },

@@ -24,6 +24,9 @@ CLI::Validator count_in(double lo, double hi);
 /// unsigned seed as 2^64 − 5 and saturates anything larger than 2^64 − 1, both silently.
 CLI::Validator seed_value();
 
+/// The extension of `path`, lower-case (".glb"), or empty.
+std::string lower_extension(const std::string& path);
+
 /// An image output: its name ends in .png (any case), or has no extension (/dev/null, a
 /// pipe). A PNG written under "x.jpg" is opened by most tools as a corrupt JPEG.
 CLI::Validator png_path();

@@ -3,6 +3,8 @@
 #include "fissure/base/error.hpp"
 
 #include <cassert>
+#include <stdexcept>
+#include <string>
 
 namespace fissure {
 namespace {
@@ -132,6 +134,12 @@ int find_fracture_parameter(std::string_view name) {
   for (std::size_t i = 0; i < table.size(); ++i)
     if (name == table[i].name) return static_cast<int>(i);
   return -1;
+}
+
+const ParameterInfo& fracture_parameter_info(std::string_view name) {
+  const int row = find_fracture_parameter(name);
+  if (row < 0) throw std::logic_error("no fracture parameter named " + std::string(name));
+  return fracture_parameter_table()[static_cast<std::size_t>(row)];
 }
 
 double& parameter_value(FractureParams& p, std::size_t row) {

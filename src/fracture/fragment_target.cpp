@@ -67,7 +67,7 @@ FragmentTargetResult simulate_to_fragment_count(const FractureBody& body, const 
   FractureParams p = params;
   if (!(p.age > 0.0)) p.age = 1.0;
   FractureResult run = simulate_fracture(body, p, initial_stress, resistance, seed, options);
-  const double max_age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))].max;
+  const double max_age = fracture_parameter_info("age").max;
   for (int doubling = 0; doubling < 20 && run.fragments.count < target && !run.crack_limit_reached; ++doubling) {
     if (p.stress_rate <= 0.0 || p.age >= max_age) break;  // a longer age opens nothing more, or is out of range
     p.age = std::min(2.0 * p.age, max_age);
@@ -113,7 +113,7 @@ FragmentTargetResult simulate_to_fragment_mesh_count(const FractureBody& body, c
   FractureParams p = params;
   p.age = out.age > 0.0 ? out.age : 1.0;
   FractureResult run = out.result;
-  const double max_age = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))].max;
+  const double max_age = fracture_parameter_info("age").max;
   std::map<int, int> labelled;  // crack prefix of `run` → labeller's count
   const auto labelled_of = [&](int k) {
     auto it = labelled.find(k);

@@ -6,8 +6,6 @@
 #include "surface_readers.hpp"
 
 #include "fissure/base/error.hpp"
-#include "fissure/base/atomic_file.hpp"
-#include "fissure/base/memory.hpp"
 
 namespace fissure::io_detail {
 
@@ -75,12 +73,10 @@ std::map<std::string, std::string> apply_material_libraries(const std::filesyste
       continue;
     }
     const std::string name = obj.string() + ": its material library " + file.string();
-    const auto size = fs::file_size(file, ec);
-    if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
     std::string bytes;
     try {
-      bytes = read_file(file);
-    } catch (const Error& e) {
+      bytes = read_input_bytes(file, name);
+    } catch (const IoError& e) {
       throw IoError(obj.string() + ": its material library: " + e.what());
     }
     for (const MtlMaterial& m : read_mtl(bytes, name)) {

@@ -223,11 +223,8 @@ ImportedScene import_simple(const fs::path& path, const std::string& format) {
 ImportedScene import_obj(const fs::path& path) {
   const std::string name = path.string();
   io_detail::check_input_file(path);
-  std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
   io_detail::ObjObjects objects;
-  const std::string bytes = read_file(path);
+  const std::string bytes = io_detail::read_input_bytes(path, name);
   SurfaceMesh surface = io_detail::read_obj(bytes, name, &objects);
   ImportedScene out;
   const std::map<std::string, std::string> textures = io_detail::apply_material_libraries(path, bytes, surface.appearance, &out.warnings);
@@ -356,7 +353,7 @@ std::vector<fs::path> scene_input_files(const fs::path& path) {
   std::error_code ec;
   if (io_detail::lower_ascii(path.extension().string()) != ".obj" || !fs::is_regular_file(path, ec)) return files;
   try {
-    for (const std::string& library : io_detail::obj_material_libraries(read_file(path), path.string())) {
+    for (const std::string& library : io_detail::obj_material_libraries(io_detail::read_input_bytes(path, path.string()), path.string())) {
       const fs::path file = path.parent_path() / library;
       if (fs::exists(file, ec)) files.push_back(file);
     }

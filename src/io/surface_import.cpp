@@ -32,6 +32,13 @@ Reader reader_for(const fs::path& path, const std::string& name) {
 
 namespace io_detail {
 
+std::string read_input_bytes(const fs::path& path, const std::string& name) {
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
+  return read_file(path);
+}
+
 void check_input_file(const fs::path& path) {
   require_nonempty_file(path);
   // A device or FIFO (a link to /dev/zero named part.obj) would be read without end.
@@ -44,10 +51,7 @@ SurfaceMesh read_surface_file(const fs::path& path) {
   check_input_file(path);
   const Reader reader = reader_for(path, name);
   if (reader == Reader::Assimp) return import_with_assimp(path, name);
-  std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  if (!ec) require_memory(static_cast<double>(size), 0, name + ": reading the file");
-  const std::string bytes = read_file(path);
+  const std::string bytes = read_input_bytes(path, name);
   switch (reader) {
     case Reader::Obj: {
       // The colours of its materials from its .mtl files (a missing one leaves them grey).

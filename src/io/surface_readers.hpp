@@ -69,6 +69,10 @@ SurfaceMesh read_off(std::string_view bytes, const std::string& name);
 /// FIFO would be read without end).
 void check_input_file(const std::filesystem::path& path);
 
+/// The whole file, once its size fits in memory (require_memory: "<name>: reading the file
+/// needs about …"). Throws IoError naming the file when it cannot be read.
+std::string read_input_bytes(const std::filesystem::path& path, const std::string& name);
+
 /// The file by its extension (case-insensitive; assimp's guess from the content would hand a file
 /// that is not what its name says to a reader that was never fuzzed with it): OBJ, PLY, STL, OFF
 /// by the readers above, glTF, GLB and FBX through assimp with node transforms applied. Not yet

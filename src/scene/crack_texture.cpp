@@ -8,7 +8,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
-#include <map>
+#include <set>
 #include <utility>
 
 namespace fissure {
@@ -66,10 +66,10 @@ GreyImage crack_texture(const std::vector<FragmentMesh>& fragments, const Surfac
   const double side = options.size;
   for (const FragmentMesh& f : fragments) {
     // Which edges have a crack face on them.
-    std::map<EdgeKey, bool> on_crack;
+    std::set<EdgeKey> on_crack;
     for (Eigen::Index t = 0; t < f.triangles.rows(); ++t) {
       if (f.triangle_crack[static_cast<std::size_t>(t)] < 0) continue;
-      for (int k = 0; k < 3; ++k) on_crack[edge_key(f.vertices, f.triangles(t, k), f.triangles(t, (k + 1) % 3))] = true;
+      for (int k = 0; k < 3; ++k) on_crack.insert(edge_key(f.vertices, f.triangles(t, k), f.triangles(t, (k + 1) % 3)));
     }
     if (on_crack.empty()) continue;  // a fragment no crack bounds
     for (Eigen::Index t = 0; t < f.triangles.rows(); ++t) {

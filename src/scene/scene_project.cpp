@@ -123,7 +123,7 @@ SceneProject read_fields(const json& j) {
   if (j.contains("age")) {
     const double age = finite_number(j["age"], "age");
     // The parameter table's range (a larger age would be refused by every body, one by one).
-    const ParameterInfo& row = fracture_parameter_table()[static_cast<std::size_t>(find_fracture_parameter("age"))];
+    const ParameterInfo& row = fracture_parameter_info("age");
     if (age < row.min || age > row.max) {
       throw FieldError{"age is " + format_number(age) + ", not in " + format_number(row.min) + ".." + format_number(row.max)};
     }

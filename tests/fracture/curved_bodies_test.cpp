@@ -89,7 +89,9 @@ TEST(CurvedBodies, DrawnLoadsSpreadOverTheTopAndStayOnIt) {
       Eigen::Vector3d total = Eigen::Vector3d::Zero();
       for (int v = 0; v < mesh->node_count(); ++v) total += f.segment<3>(3 * v);
       EXPECT_NEAR(total.z(), -1.0, 1e-9) << load.spec;  // the patch holds faces and pushes down
-      if (mesh == tile) EXPECT_NEAR(load.selection.center.z(), 0.02, 1e-9) << load.spec;
+      if (mesh == tile) {
+        EXPECT_NEAR(load.selection.center.z(), 0.02, 1e-9) << load.spec;
+      }
     }
     EXPECT_GE(specs.size(), 30u) << "40 seeds, few distinct patches";
     for (int a = 0; a < 2; ++a) {

@@ -271,7 +271,9 @@ TEST(FragmentMesh, DustBelowAnElementsResolutionJoinsItsNeighbour) {
       total += f.volume;
     }
     EXPECT_NEAR(total, 1.0, 1e-9);
-    if (fragments.size() == 2) EXPECT_NEAR(std::min(fragments[0].volume, fragments[1].volume), corner, 1e-9);
+    if (fragments.size() == 2) {
+      EXPECT_NEAR(std::min(fragments[0].volume, fragments[1].volume), corner, 1e-9);
+    }
   }
 }
 

@@ -93,6 +93,10 @@ const std::vector<ParameterInfo>& fracture_parameter_table();
 /// The row of the table whose name (JSON key) is `name`, or -1.
 int find_fracture_parameter(std::string_view name);
 
+/// The row named `name`, which must be in the table (a name the code spells, like "age"; throws
+/// std::logic_error otherwise).
+const ParameterInfo& fracture_parameter_info(std::string_view name);
+
 /// The scalar field of `params` a table row describes (by row index), for generic readers and
 /// writers (CLI, JSON, studio panel, fit priors). `row` < fracture_parameter_table().size().
 double& parameter_value(FractureParams& params, std::size_t row);
