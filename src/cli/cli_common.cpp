@@ -13,7 +13,7 @@ void add_threads_option(CLI::App& cmd) {
   cmd.add_option_function<double>("--threads", [](double n) { set_thread_count(static_cast<int>(std::lround(n))); },
                                   "Threads for all work (default $FISSURE_THREADS, else every hardware thread); "
                                   "results are identical at any count")
-      ->check(count_in(1, 1024));
+      ->type_name("N")->check(count_in(1, 1024));
 }
 
 std::FILE* summary_stream(const std::string& output) { return output == "-" ? stderr : stdout; }

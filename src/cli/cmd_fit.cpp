@@ -303,10 +303,10 @@ void register_fit(CLI::App& app, Action& action) {
       ->check(finite_in(1e-6, 1e6))
       ->default_val(3.0);
   cmd->add_option("--body", args->body, "Fit body W,H,T (m) instead of the exemplar's aspect on a 1 m x 2 cm tile");
-  cmd->add_option("--tets", args->tets, "Tets of the fit body instead of the resolution rule")->check(count_in(100, 2000000));
-  cmd->add_option("--population", args->population, "Population kept (0: trials/100 within [20, 200])")->check(count_in(0, 100000));
+  cmd->add_option("--tets", args->tets, "Tets of the fit body instead of the resolution rule")->type_name("N")->check(count_in(100, 2000000));
+  cmd->add_option("--population", args->population, "Population kept (0: trials/100 within [20, 200])")->type_name("N")->check(count_in(0, 100000));
   cmd->add_option("--eval-seeds", args->evaluation_seeds, "Fresh seeds the winner is re-simulated on for the reported error")
-      ->check(count_in(0, 1000))
+      ->type_name("N")->check(count_in(0, 1000))
       ->default_val(8);
   cmd->add_option("--name", args->name, "Name of the fitted material (default: the image's file name without extension)");
   cmd->add_option("-o,--output", args->output, "Fitted material file (with --shard: the shard's result); required");

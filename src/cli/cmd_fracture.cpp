@@ -251,7 +251,11 @@ int run_fracture(const FractureArgs& given) {
     fragment_meshes = fragments.size();
     progress.stage("writing " + args.output);
     Stopwatch exporting;
-    write_scene(args.output, fragment_scene(fragments, result.cracks, params.density, appearance));
+    ExportScene scene = fragment_scene(fragments, result.cracks, params.density, appearance);
+    // The fragments are in the input's frame; the writer turns them to the format's up.
+    scene.up = scenario.up;
+    scene.frame_name = is_tile_spec(args.input) ? "tile" : std::filesystem::path(args.input).stem().string();
+    write_scene(args.output, scene);
     export_s = exporting.milliseconds() / 1e3;
   }
 
@@ -361,12 +365,12 @@ void register_fracture(CLI::App& app, Action& action) {
   const auto& table = fracture_parameter_table();
   for (std::size_t row = 0; row < table.size(); ++row) {
     const ParameterInfo& info = table[row];
-    std::string help = std::string(info.help) + (info.unit[0] ? std::string(" [") + info.unit + "]" : std::string()) +
-                       " (overrides the material's)";
+    // The unit is in the range the check shows ("NUM:in (0, 100] m").
+    std::string help = std::string(info.help) + " (overrides the material's)";
     cmd->add_option_function<double>(
            info.flag, [args, row](double value) { args->overrides[row] = value; }, help)
         ->type_name("NUM")
-        ->check(finite_number());
+        ->check(parameter_range(info));
   }
   cmd->add_option("--relaxation", args->relaxation, "Stress relaxation: directional (Eq. 3), isotropic (Eq. 4)");
   cmd->add_option("--fix", args->fix,
@@ -378,22 +382,19 @@ void register_fracture(CLI::App& app, Action& action) {
   cmd->add_option("--up", args->up, "Up axis (+x, -y, … or x,y,z); default: +y for glTF/FBX/DAE/OBJ, else +z");
   cmd->add_option("--view", args->view, "Direction the visible face looks along (default: up)");
   cmd->add_option("--fragments", args->fragments, "Reach about N fragments (+-20 %) by choosing the age; with -o, N closed meshes")
-      ->type_name("INT")
-      ->check(count_in(1, 1e6));
+      ->type_name("N")->check(count_in(1, 1e6));
   cmd->add_option("--seed", args->seed, "Seed of the resistance field and the crack noise")->check(seed_value())->default_val(1);
   cmd->add_flag("--posterior", args->posterior,
                 "Draw the five fitted parameters from a fitted material's posterior (per seed: similar, not identical)");
   cmd->add_option("--tets", args->tets, "Target number of tetrahedra for a surface input (a fitted material: its fit body's)")
-      ->type_name("INT")
       ->default_val(24000)
-      ->check(count_in(10, 5e7));
+      ->type_name("N")->check(count_in(10, 5e7));
   cmd->add_option("-o,--output", args->output,
                   "Write the fragments as closed meshes, one object each: .glb, .gltf, .obj (+ .mtl) or .ply");
   cmd->add_option("--pattern", args->pattern, "Write the visible crack pattern as a line drawing (PNG)")->check(png_path());
   cmd->add_option("--pattern-size", args->pattern_size, "Long side of the pattern drawing, pixels")
-      ->type_name("INT")
       ->default_val(1024)
-      ->check(count_in(64, 16384));
+      ->type_name("N")->check(count_in(64, 16384));
   cmd->add_option("--stats", args->stats,
                   "Write the visible pattern's statistics (the schema of fissure analyze --json, plus \"fracture\"); - for stdout");
   cmd->add_option("--msh", args->msh, "Write the tet mesh with fragment labels and crack-onset times as gmsh views");

@@ -77,9 +77,8 @@ void register_mesh(CLI::App& app, Action& action) {
                   "Surface file (OBJ, PLY, STL, glTF/GLB, FBX, OFF) or tile:W,H,T (metres; x, y centred, z from 0 to T)")
       ->required();
   cmd->add_option("--tets", args->tets, "Target number of tetrahedra (the result lands within +-25 %)")
-      ->type_name("INT")
       ->default_val(24000)
-      ->check(count_in(10, 5e7));
+      ->type_name("N")->check(count_in(10, 5e7));
   cmd->add_option("-o,--output", args->output, "Output mesh, gmsh MSH 4.1: a .msh file, or - for stdout")->required();
   cmd->add_option("--seed", args->seed, "Seed of the mesher's random generator (same seed, same mesh)")->check(seed_value())->default_val(0);
   cmd->add_flag("--binary", args->binary, "Write binary MSH instead of ASCII");

@@ -532,8 +532,7 @@ void register_scene(CLI::App& app, Action& action) {
   fracture->add_option("--age", fr->age, "Age to simulate to (default: each material's)")->check(finite_in(age.min, age.max));
   fracture->add_option("--up", fr->up, "Up axis (+x, -y, …); default: the format's (+y for glTF)");
   fracture->add_option("--tets", fr->tets, "Tetrahedra per body (default: a fitted material's, else 6000)")
-      ->type_name("INT")
-      ->check(count_in(10, 5e7));
+      ->type_name("N")->check(count_in(10, 5e7));
   fracture->add_option("--unit", fr->unit, "Metres per scene unit (0.01 for a scene in centimetres; default 1: the format's metres)")
       ->check(finite_in(1e-9, 1e9));
   fracture->add_option("--bodies", fr->bodies, "K/N: fracture slice K of N of the assigned bodies, leave the rest as they are")
@@ -549,8 +548,7 @@ void register_scene(CLI::App& app, Action& action) {
                        "Also draw each fractured body's cracks in its texture (UV) space, for decals: DIR/<body path>.png, "
                        "white on black");
   fracture->add_option("--crack-mask-size", fr->crack_mask_size, "The crack masks' side in pixels (default 1024)")
-      ->type_name("INT")
-      ->check(count_in(16, 16384));
+      ->type_name("N")->check(count_in(16, 16384));
   fracture->add_option("--save-project", fr->save_project,
                        "Write the run's settings as a project (.json) before running: fissure scene fracture PROJECT "
                        "repeats the run (the project being run may be named: it is updated with this run's options)");

@@ -14,8 +14,8 @@ void add_material_options(CLI::App& cmd, ElasticMaterial& material, bool require
   double* targets[3] = {&material.youngs_modulus, &material.poisson_ratio, &material.density};
   for (std::size_t i = 0; i < table.size(); ++i) {
     const ParameterInfo& info = table[i];
-    const std::string unit = info.unit[0] ? std::string(" [") + info.unit + "]" : std::string();
-    auto* option = cmd.add_option(info.flag, *targets[i], std::string(info.help) + unit)->check(finite_number());
+    // The unit is in the range the check shows ("FLOAT:in (0, inf] Pa").
+    auto* option = cmd.add_option(info.flag, *targets[i], std::string(info.help))->check(parameter_range(info));
     const bool required = i < 2 || require_density;
     if (required) {
       option->required();

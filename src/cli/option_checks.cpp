@@ -34,6 +34,21 @@ CLI::Validator finite_number() {
       "FINITE");
 }
 
+CLI::Validator parameter_range(const ParameterInfo& info) {
+  const std::string range = std::string(info.min_exclusive ? "(" : "[") + format_number(info.min) + ", " +
+                            format_number(info.max) + (info.max_exclusive ? ")" : "]") +
+                            (info.unit[0] ? std::string(" ") + info.unit : std::string());
+  return CLI::Validator(
+      [info](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!read_number(text, value) || !std::isfinite(value)) return "'" + text + "' is not a finite number";
+        const std::string problem = parameter_problem(info, value, "");
+        // parameter_problem's text after its (empty) label: " 0 is outside (0, 100] m".
+        return problem.empty() ? std::string() : problem.substr(1);
+      },
+      "in " + range);
+}
+
 CLI::Validator finite_in(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& text) -> std::string {
@@ -55,7 +70,7 @@ CLI::Validator count_in(double lo, double hi) {
         if (value < lo || value > hi) return text + " is outside " + range_text(lo, hi);
         return {};
       },
-      "COUNT in " + range_text(lo, hi));
+      "a whole number in " + range_text(lo, hi));
 }
 
 CLI::Validator seed_value() {

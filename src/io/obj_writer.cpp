@@ -36,7 +36,7 @@ std::string obj_object_name(const ExportScene& scene, std::size_t k) {
 
 }  // namespace
 
-std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
+std::string encode_obj(const ExportScene& scene, const std::string& mtl_name, const Eigen::Matrix3d& turn) {
   const auto objects = std::count_if(scene.parts.begin(), scene.parts.end(), [](const ExportPart& p) { return p.triangles.rows() > 0; });
   std::string out = "# Fissure: " + std::to_string(objects) + (objects == 1 ? " object" : " objects") + ", metres\n";
   if (!mtl_name.empty()) out += "mtllib " + mtl_name + "\n";
@@ -46,7 +46,8 @@ std::string encode_obj(const ExportScene& scene, const std::string& mtl_name) {
   for (std::size_t k = 0; k < scene.parts.size(); ++k) {
     const ExportPart& part = scene.parts[k];
     if (part.triangles.rows() == 0) continue;  // a group: OBJ has no hierarchy
-    const Eigen::Matrix4d to_scene = part_to_scene(scene, k);
+    Eigen::Matrix4d to_scene = part_to_scene(scene, k);
+    to_scene.topRows<3>() = turn * to_scene.topRows<3>();
     out += "o " + obj_object_name(scene, k) + "\n";
     // Extras as comments, one line: OBJ has no place for them.
     out += "# extras " + nlohmann::json::parse(part.extras_json).dump() + "\n";

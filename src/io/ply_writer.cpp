@@ -6,13 +6,13 @@
 
 namespace fissure::io_detail {
 
-std::string encode_ply(const ExportScene& scene) {
+std::string encode_ply(const ExportScene& scene, const Eigen::Matrix3d& turn) {
   std::size_t vertices = 0, faces = 0;
   for (const ExportPart& p : scene.parts) {
     vertices += static_cast<std::size_t>(p.vertices.rows());
     faces += static_cast<std::size_t>(p.triangles.rows());
   }
-  std::string out = "ply\nformat binary_little_endian 1.0\ncomment Fissure: metres; part = index of the fragment\n";
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment Fissure: metres, +z up; part = index of the fragment\n";
   for (std::size_t m = 0; m < scene.materials.size(); ++m)
     out += "comment material " + std::to_string(m) + " " + scene.materials[m].name + "\n";
   out += "element vertex " + std::to_string(vertices) +
@@ -20,7 +20,8 @@ std::string encode_ply(const ExportScene& scene) {
   out += "element face " + std::to_string(faces) + "\nproperty list uchar int vertex_indices\nproperty uchar material\nend_header\n";
   for (std::size_t k = 0; k < scene.parts.size(); ++k) {
     const ExportPart& p = scene.parts[k];
-    const Eigen::Matrix4d to_scene = part_to_scene(scene, k);
+    Eigen::Matrix4d to_scene = part_to_scene(scene, k);
+    to_scene.topRows<3>() = turn * to_scene.topRows<3>();
     for (Eigen::Index v = 0; v < p.vertices.rows(); ++v) {
       const Eigen::Vector3d x = to_scene.topLeftCorner<3, 3>() * p.vertices.row(v).transpose() + to_scene.topRightCorner<3, 1>();
       for (int i = 0; i < 3; ++i) append_bytes(out, static_cast<float>(x(i)));

@@ -10,9 +10,10 @@
 namespace fissure::io_detail {
 
 std::string encode_gltf(const ExportScene& scene, bool binary);
-std::string encode_obj(const ExportScene& scene, const std::string& mtl_name);
+// `turn`: the rotation from the parts' frame to the format's (ExportScene::up).
+std::string encode_obj(const ExportScene& scene, const std::string& mtl_name, const Eigen::Matrix3d& turn);
 std::string encode_mtl(const ExportScene& scene);
-std::string encode_ply(const ExportScene& scene);
+std::string encode_ply(const ExportScene& scene, const Eigen::Matrix3d& turn);
 
 static_assert(std::endian::native == std::endian::little, "binary glTF and PLY are written as the host's bytes");
 

@@ -6,6 +6,7 @@
 #include "fissure/base/atomic_file.hpp"
 #include "fissure/base/error.hpp"
 
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
 #include <charconv>
@@ -19,6 +20,8 @@ namespace {
 void check_scene(const ExportScene& scene) {
   const auto scene_extras = nlohmann::json::parse(scene.extras_json, nullptr, false);
   if (scene_extras.is_discarded() || !scene_extras.is_object()) throw InvalidInput("the scene's extras are not a JSON object");
+  if (!scene.up.allFinite() || !(std::abs(scene.up.norm() - 1.0) <= 1e-9))
+    throw InvalidInput("the scene's up axis is not a unit vector");
   const int materials = static_cast<int>(scene.materials.size());
   for (std::size_t p = 0; p < scene.parts.size(); ++p) {
     const ExportPart& part = scene.parts[p];
@@ -96,13 +99,58 @@ std::vector<fs::path> scene_output_files(const fs::path& path) {
   return {path};
 }
 
+Eigen::Matrix3d turn_between(const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+  if (from == to) return Eigen::Matrix3d::Identity();
+  const double c = from.dot(to);
+  if (c < -1.0 + 1e-12) {
+    // Opposite: a half turn 2uuᵀ − I about u ⊥ from (from crossed with its least aligned axis).
+    Eigen::Index least = 0;
+    from.cwiseAbs().minCoeff(&least);
+    const Eigen::Vector3d u = from.cross(Eigen::Vector3d::Unit(least)).normalized();
+    return 2.0 * u * u.transpose() - Eigen::Matrix3d::Identity();
+  }
+  // Rodrigues with v = from × to, c = from · to: I + [v]× + [v]×² / (1 + c). Exact (entries 0 and
+  // ±1) between coordinate axes, so a tile's +Z turned to glTF's +Y writes no round-off.
+  const Eigen::Vector3d v = from.cross(to);
+  Eigen::Matrix3d k;
+  k << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return Eigen::Matrix3d::Identity() + k + k * k / (1.0 + c);
+}
+
+namespace {
+
+// glTF's parts under a root node turning them from their frame to +Y up (see ExportScene::up).
+ExportScene framed_for_gltf(const ExportScene& scene, const Eigen::Matrix3d& turn) {
+  ExportScene out;
+  out.materials = scene.materials;
+  out.extras_json = scene.extras_json;
+  out.parts.reserve(scene.parts.size() + 1);
+  ExportPart root;
+  root.name = scene.frame_name;
+  root.linear = turn;
+  const Eigen::Vector3d& u = scene.up;
+  root.extras_json = "{\"up_of_children\":[" + io_detail::exact_number(u.x()) + "," + io_detail::exact_number(u.y()) + "," +
+                     io_detail::exact_number(u.z()) + "]}";
+  out.parts.push_back(std::move(root));
+  for (const ExportPart& p : scene.parts) {
+    out.parts.push_back(p);
+    out.parts.back().parent = p.parent + 1;  // -1 (a root) becomes 0, the new root
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name) {
   check_scene(scene);
+  const Eigen::Vector3d format_up = format == SceneFormat::Ply ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d::UnitY();
+  const Eigen::Matrix3d turn = turn_between(scene.up, format_up);
+  const bool turned = !turn.isIdentity(0.0);
   switch (format) {
-    case SceneFormat::Glb: return io_detail::encode_gltf(scene, true);
-    case SceneFormat::Gltf: return io_detail::encode_gltf(scene, false);
-    case SceneFormat::Obj: return io_detail::encode_obj(scene, mtl_name);
-    case SceneFormat::Ply: return io_detail::encode_ply(scene);
+    case SceneFormat::Glb: return io_detail::encode_gltf(turned ? framed_for_gltf(scene, turn) : scene, true);
+    case SceneFormat::Gltf: return io_detail::encode_gltf(turned ? framed_for_gltf(scene, turn) : scene, false);
+    case SceneFormat::Obj: return io_detail::encode_obj(scene, mtl_name, turn);
+    case SceneFormat::Ply: return io_detail::encode_ply(scene, turn);
   }
   return {};
 }

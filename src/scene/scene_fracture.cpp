@@ -169,6 +169,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   }
 
   const Eigen::Vector3d up = (options.up ? *options.up : scene.up).normalized();
+  out.up = up;
   // Which way a standing plate faces: towards the middle of the whole scene, fractured or not.
   const Eigen::Vector3d centre = work.empty() ? Eigen::Vector3d::Zero() : scene_centre(scene, out.bodies);
   const std::uint64_t cache_cap = options.cache_max_bytes > 0 ? options.cache_max_bytes : default_cache_size_limit();
@@ -271,6 +272,8 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
 
 ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fracture) {
   ExportScene out;
+  out.up = fracture.up;
+  out.frame_name = "scene";
   // Materials: the scene's, a default for meshes with none, and the crack material when a body
   // broke (named so it clashes with none of the scene's).
   std::set<std::string> names;

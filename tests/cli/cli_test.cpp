@@ -218,8 +218,8 @@ TEST_F(Cli, BadInputGivesOneLineAndADistinctCode) {
   write_file_atomically(dir / "text.msh", "hello\n");
   expect_failure(test::run_command(fissure() + " solve " + (dir / "text.msh").string() + " --E 3e10 --nu 0.2" + load + out),
                  4, "not a gmsh MSH file");
-  expect_failure(test::run_command(solve + " --E 3e10 --nu 0.5" + load + out), 3, "--nu 0.5 is outside [0, 0.5)");
-  expect_failure(test::run_command(solve + " --E -1 --nu 0.2" + load + out), 3, "--E -1 is outside (0, inf] Pa");
+  expect_failure(test::run_command(solve + " --E 3e10 --nu 0.5" + load + out), 2, "--nu: 0.5 is outside [0, 0.5)");
+  expect_failure(test::run_command(solve + " --E -1 --nu 0.2" + load + out), 2, "--E: -1 is outside (0, inf] Pa");
   expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --load ball:5,5,5,0.01=0,0,-1" + out), 3,
                  "load patch 'ball:5,5,5,0.01' touches no boundary face");
   expect_failure(test::run_command(solve + " --E 3e10 --nu 0.2 --fix ball:-0.3,-0.2,0,0.01" + load + out), 3,

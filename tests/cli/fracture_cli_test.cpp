@@ -6,6 +6,7 @@
 #include "test_shapes.hpp"
 #include "test_support.hpp"
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -172,6 +173,7 @@ TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
     std::map<std::string, std::map<std::pair<int, int>, int>> edges;  // node → directed edge → uses
     std::set<std::string> materials;
     double volume = 0.0;
+    Eigen::AlignedBox3d bounds;
     const std::function<void(const aiNode*, aiMatrix4x4)> walk = [&](const aiNode* node, aiMatrix4x4 parent) {
       const aiMatrix4x4 world = parent * node->mTransformation;
       std::map<std::array<float, 3>, int> ids;
@@ -184,6 +186,7 @@ TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
           for (int i = 0; i < 3; ++i) {
             x[i] = world * m->mVertices[m->mFaces[t].mIndices[i]];
             v[i] = ids.try_emplace({x[i].x, x[i].y, x[i].z}, static_cast<int>(ids.size())).first->second;
+            bounds.extend(Eigen::Vector3d(x[i].x, x[i].y, x[i].z));
           }
           volume += static_cast<double>(x[0] * (x[1] ^ x[2])) / 6.0;
           for (int i = 0; i < 3; ++i) ++edges[node->mName.C_Str()][{v[i], v[(i + 1) % 3]}];
@@ -208,6 +211,10 @@ TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
     // The tile's 0.4 × 0.4 × 0.03 m³, to float32's resolution of the coordinates (~3e-8 m over
     // ~1e4 triangles of ≤ 1e-3 m²).
     EXPECT_NEAR(volume, 0.4 * 0.4 * 0.03, 1e-7);
+    // The tile lies flat in glTF's and OBJ's +Y up (as Blender opens them): its 3 cm along Y.
+    EXPECT_NEAR(bounds.sizes().y(), 0.03, 1e-6) << bounds.sizes().transpose();
+    EXPECT_NEAR(bounds.sizes().x(), 0.4, 1e-6);
+    EXPECT_NEAR(bounds.sizes().z(), 0.4, 1e-6);
   }
   // Node extras, as a glTF reader sees them.
   const std::string glb = read_file(path("f.glb"));
@@ -215,7 +222,13 @@ TEST_F(FractureCli, WritesClosedFragmentMeshesThatAssimpReadsBack) {
   std::memcpy(&json_length, glb.data() + 12, 4);
   const auto gltf = nlohmann::json::parse(glb.substr(20, json_length));
   double mass = 0.0;
+  // Node 0 turns the tile's +Z up to glTF's +Y; the fragments are its children, in the tile's frame.
+  const auto& frame = gltf.at("nodes").at(0);
+  EXPECT_EQ(frame.at("name"), "tile");
+  EXPECT_EQ(frame.at("children").size(), gltf.at("nodes").size() - 1);
+  EXPECT_EQ(gltf.at("scenes").at(0).at("nodes"), nlohmann::json::array({0}));
   for (const auto& node : gltf.at("nodes")) {
+    if (!node.contains("mesh")) continue;
     const auto& extras = node.at("extras");
     mass += extras.at("mass_kg").get<double>();
     EXPECT_EQ(node.at("translation"), extras.at("centre_of_mass_m"));
@@ -318,7 +331,8 @@ TEST_F(FractureCli, FragmentExportsAreTheSameBytesAtOneAndTwoThreads) {
 TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   const std::string run = fissure() + " fracture " + mesh();
   const std::string out = " --stats " + path("never.json");
-  expect_failure(test::run_command(run + " --relax-radius -1" + out), 3, "--relax-radius -1 is outside (0, 100] m");
+  // A value outside its table range is a command-line error (2), like any other flag's range.
+  expect_failure(test::run_command(run + " --relax-radius -1" + out), 2, "--relax-radius: -1 is outside (0, 100] m");
   expect_failure(test::run_command(run + " --material marble" + out), 3, "material \"marble\"");
   write_file_atomically(path("broken.json"), "{\"schema\": \"fissure-material\", \"version\": 1, \"name\": \"x\", \"parameters\": {}}");
   expect_failure(test::run_command(run + " --material " + path("broken.json") + out), 4, path("broken.json"));

@@ -195,6 +195,71 @@ TEST_F(SceneExport, NamesWithBlanksStayOneWordInObj) {
   EXPECT_NE(encode_scene(s, SceneFormat::Gltf).find("Old Stone\\nnewmtl x"), std::string::npos);
 }
 
+// Each format in its own up convention (ExportScene::up): a part raised along the parts' up by 2
+// comes out raised along +Y in glTF and OBJ (as Blender reads them) and along +Z in PLY (as CAD
+// tools and Fissure's own reader take it). A +Z scene's glTF keeps its parts and their extras
+// under one added root that turns them; OBJ and PLY have no hierarchy and turn the positions.
+TEST_F(SceneExport, EachFormatIsWrittenInItsOwnUpAxis) {
+  for (const Eigen::Vector3d up : {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(-1, 0, 0)}) {
+    SCOPED_TRACE(up.transpose());
+    ExportScene s = two_cubes();
+    s.up = up;
+    s.frame_name = "tile";
+    s.parts[1].translation = 2.0 * up;
+    for (const char* name : {"up.glb", "up.obj"}) {
+      SCOPED_TRACE(name);
+      write_scene(dir / name, s);
+      const auto nodes = read_back(dir / name);
+      ASSERT_EQ(nodes.size(), 2u);
+      const NodeReport& raised = nodes.at("fragment_001");
+      EXPECT_NEAR(raised.volume, 1.0, 1e-6);  // turned, not mirrored
+      EXPECT_TRUE(raised.closed);
+      if (std::string(name) == "up.glb") EXPECT_TRUE(raised.translation.isApprox(Eigen::Vector3d(0, 2, 0), 1e-12));
+    }
+    const ExportScene back = read_fissure_gltf(dir / "up.glb");
+    ASSERT_EQ(back.parts.size(), up == Eigen::Vector3d::UnitY() ? 2u : 3u);
+    if (back.parts.size() == 3u) {
+      EXPECT_EQ(back.parts[0].name, "tile");
+      EXPECT_EQ(back.parts[1].parent, 0);
+      // The part keeps its own frame, and its extras with it.
+      EXPECT_EQ(back.parts[2].translation, 2.0 * up);
+      EXPECT_EQ(nlohmann::json::parse(back.parts[2].extras_json).at("name"), "fragment_001");
+      EXPECT_TRUE((back.parts[0].linear * up).isApprox(Eigen::Vector3d::UnitY(), 1e-15));
+    }
+    // PLY: the raised cube's vertices lie 1.5..2.5 along +Z.
+    const std::string ply = encode_scene(s, SceneFormat::Ply);
+    const std::size_t body = ply.find("end_header\n") + 11;
+    float z_max = -1e9f;
+    for (int v = 0; v < 48; ++v) {
+      float x[3];
+      std::memcpy(x, ply.data() + body + static_cast<std::size_t>(v) * 24, sizeof x);
+      z_max = std::max(z_max, x[2]);
+    }
+    EXPECT_FLOAT_EQ(z_max, 2.5f);
+  }
+}
+
+// turn_between: a rotation (orthonormal, det +1) taking `from` to `to`, exact between axes, and
+// for opposite vectors a half turn.
+TEST(TurnBetween, IsTheRotationFromOneAxisToAnother) {
+  const Eigen::Vector3d axes[] = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(),
+                                  -Eigen::Vector3d::UnitX(), -Eigen::Vector3d::UnitY(), -Eigen::Vector3d::UnitZ(),
+                                  Eigen::Vector3d(1, 2, -3).normalized(), Eigen::Vector3d(-1, -2, 3).normalized()};
+  for (const Eigen::Vector3d& a : axes)
+    for (const Eigen::Vector3d& b : axes) {
+      const Eigen::Matrix3d r = turn_between(a, b);
+      SCOPED_TRACE(testing::Message() << a.transpose() << " -> " << b.transpose());
+      EXPECT_TRUE((r * a).isApprox(b, 1e-14));
+      EXPECT_TRUE((r.transpose() * r).isApprox(Eigen::Matrix3d::Identity(), 1e-14));
+      EXPECT_NEAR(r.determinant(), 1.0, 1e-14);
+    }
+  // Exact between coordinate axes: +Z to +Y writes 0 and ±1 only.
+  Eigen::Matrix3d z_to_y;
+  z_to_y << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  EXPECT_EQ(turn_between(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()), z_to_y);
+  EXPECT_EQ(turn_between(Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitY()), Eigen::Matrix3d::Identity());
+}
+
 TEST_F(SceneExport, SameSceneSameBytes) {
   for (SceneFormat f : {SceneFormat::Glb, SceneFormat::Gltf, SceneFormat::Obj, SceneFormat::Ply})
     EXPECT_EQ(encode_scene(two_cubes(), f, "x.mtl"), encode_scene(two_cubes(), f, "x.mtl"));

@@ -53,7 +53,19 @@ struct ExportScene {
   std::vector<ExportMaterial> materials;
   std::vector<ExportPart> parts;
   std::string extras_json = "{}";  ///< a JSON object: glTF scene extras (other formats drop it)
+  /// The up axis of the parts' frame (unit). Each format is written in its own convention:
+  /// glTF and OBJ +Y up (as Blender reads and writes them), PLY +Z up (as CAD and scanners
+  /// write it, and as Fissure reads it). OBJ and PLY turn the positions they write by the
+  /// shortest rotation from `up` to theirs; glTF keeps the parts as they are under one added
+  /// root node, named `frame_name`, that holds the rotation, so node extras given in the parts'
+  /// frame (a fragment's centre of mass) stay true in the frame of their parent.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
+  std::string frame_name = "body";
 };
+
+/// The shortest rotation taking the unit vector `from` to the unit vector `to` (a half turn about
+/// an axis orthogonal to both when they are opposite); the identity exactly when they are equal.
+Eigen::Matrix3d turn_between(const Eigen::Vector3d& from, const Eigen::Vector3d& to);
 
 /// Part `k`'s frame → the scene's frame: the product of its ancestors' transforms and its own.
 Eigen::Matrix4d part_to_scene(const ExportScene& scene, std::size_t k);
@@ -73,7 +85,7 @@ void check_scene_output_path(const std::filesystem::path& path);
 /// The files write_scene(path, …) writes: `path`, and for OBJ its .mtl beside it.
 std::vector<std::filesystem::path> scene_output_files(const std::filesystem::path& path);
 
-/// The bytes of `scene` in `format`. For OBJ, the .obj file's; `mtl_name` is the name its
+/// The bytes of `scene` in `format`, turned to the format's up axis (ExportScene::up). For OBJ, the .obj file's; `mtl_name` is the name its
 /// `mtllib` line gives. Throws InvalidInput naming the part and triangle when a triangle indexes
 /// a vertex or material that does not exist, or a value is not finite.
 std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name = {});

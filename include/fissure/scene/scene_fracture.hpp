@@ -114,6 +114,9 @@ struct SceneFracture {
   std::vector<std::string> notes;
   int slice = 1, slices = 1;              ///< the slice run (SceneFractureOptions)
   double unit = 1.0;                      ///< metres per scene unit (SceneFractureOptions)
+  /// The scene's up axis as the run took it (SceneFractureOptions::up, else the format's):
+  /// scene_export() writes each format turned from it to the format's own.
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY();
   /// What identifies the run across its slices: a hash of the scene's content (nodes, meshes,
   /// materials) and of every option but the slice. scene_merge.hpp joins only slices that share it.
   std::string run;
