@@ -21,6 +21,7 @@
 #include "fissure/fracture/fragment_mesh.hpp"
 #include "fissure/fracture/fragment_target.hpp"
 #include "fissure/fracture/material_file.hpp"
+#include "fissure/fracture/overload.hpp"
 #include "fissure/fracture/pattern_image.hpp"
 #include "fissure/fracture/prepared_body.hpp"
 #include "fissure/fracture/resistance_field.hpp"
@@ -207,6 +208,7 @@ int run_fracture(const FractureArgs& given) {
       fitted_force = fitted_load_force(*fit, params, *prepared);
       initial *= fitted_force;
     }
+    if (const auto overload = overload_note(initial, params)) std::cerr << "fissure fracture: warning: " << *overload << '\n';
     resistance = draw_resistance(mesh->centroids(), params, args.seed, thread_count());
     preparation_s = clock.milliseconds() / 1e3;
     progress.stage("simulating");

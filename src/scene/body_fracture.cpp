@@ -3,6 +3,7 @@
 #include "fissure/base/error.hpp"
 #include "fissure/fracture/fitted_transfer.hpp"
 #include "fissure/fracture/material_fit.hpp"
+#include "fissure/fracture/overload.hpp"
 #include "fissure/fracture/static_stress_cache.hpp"
 #include "fissure/fracture/resistance_field.hpp"
 #include "fissure/fracture/simulation.hpp"
@@ -82,6 +83,7 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   const FractureBody& fracture_body = statics.fracture_body();
   out.stress_cached = statics.solved() == 0;
   out.cache_warning = statics.warning();
+  if (const auto overload = overload_note(initial, params)) out.overload = *overload;
   const Eigen::VectorXd resistance = draw_resistance(mesh->centroids(), params, request.seed, threads);
   out.seconds.preparation = seconds_since(clock);
   if (cancel) cancel->throw_if_cancelled();

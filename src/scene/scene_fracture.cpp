@@ -254,6 +254,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   for (const std::size_t b : work) {
     const SceneBodyReport& r = out.reports[b];
     if (r.status != SceneBodyReport::Status::Fractured) continue;
+    if (!out.results[b]->fracture.overload.empty()) out.warnings.push_back(r.path + ": " + out.results[b]->fracture.overload);
     // 1.5×: the mesher's own count tolerance is far tighter; this is a body that needed more
     // (than --tets, or the default it stood for: a 4 mm mirror took 92K for 6000).
     const int asked = out.results[b]->fracture.tets_asked;

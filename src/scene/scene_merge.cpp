@@ -70,9 +70,15 @@ ExportScene merge_scene_slices(const std::vector<ExportScene>& slices, const std
   const int n = ids[0].n;
   std::vector<int> slice_of_k(static_cast<std::size_t>(n) + 1, -1);
   for (std::size_t i = 0; i < slices.size(); ++i) {
-    if (ids[i].run != ids[0].run || ids[i].n != n)
+    const auto which = [&](std::size_t j) {
+      return ids[j].n == 1 ? std::string("an unsliced run's output") : "slice " + std::to_string(ids[j].k) + "/" + std::to_string(ids[j].n);
+    };
+    if (ids[i].run != ids[0].run)
       throw InvalidInput(names[i] + ": a slice of another run than " + names[0] +
-                         " (another scene, assignments, seed, age, up, tet count or slice count)");
+                         " (another scene, assignments, seed, age, up or tet count)");
+    if (ids[i].n != n)
+      throw InvalidInput(names[i] + " is " + which(i) + " and " + names[0] + " is " + which(0) +
+                         ": merge the slices of one --bodies K/N split");
     if (slice_of_k[static_cast<std::size_t>(ids[i].k)] >= 0)
       throw InvalidInput(names[i] + ": slice " + std::to_string(ids[i].k) + "/" + std::to_string(n) + " is also " +
                          names[static_cast<std::size_t>(slice_of_k[static_cast<std::size_t>(ids[i].k)])]);

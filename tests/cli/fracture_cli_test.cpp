@@ -328,6 +328,19 @@ TEST_F(FractureCli, FragmentExportsAreTheSameBytesAtOneAndTwoThreads) {
   }
 }
 
+// A load with a few digits too many is finite physics, so it runs, but it is said: 1e300 N
+// shatters the tile at once. A hammer's 1e4 N over 3 cm is not flagged.
+TEST_F(FractureCli, AnAbsurdLoadIsSaid) {
+  const std::string run = fissure() + " fracture tile:0.3,0.3,0.02 --tets 2000 -q --stats " + path("load.json");
+  auto r = test::run_command(run + " --load ball:0,0,0.01,0.03=0,0,-1e300");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the loads stress"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("are the forces in newtons?"), std::string::npos) << r.output;
+  r = test::run_command(run + " --load ball:0,0,0.01,0.03=0,0,-1e4");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+}
+
 TEST_F(FractureCli, BadInputIsOneLineAndWritesNothing) {
   const std::string run = fissure() + " fracture " + mesh();
   const std::string out = " --stats " + path("never.json");

@@ -362,6 +362,14 @@ TEST(SceneFracture, TheSameSeedGivesTheSameBytesAtAnyThreadCountAndSlicesAddUp) 
   for (std::size_t i = 0; i < whole.bodies.size(); ++i) EXPECT_EQ(covered[i], whole.results[i] ? 1 : 0) << whole.bodies[i].path;
   EXPECT_TRUE(encode_scene(merge_scene_slices(slice_files, {"2.glb", "1.glb"}), SceneFormat::Glb) == a);
   EXPECT_THROW(merge_scene_slices({slice_files[0]}, {"2.glb"}), InvalidInput) << "slice 1 missing";
+  // The unsliced output shares the run but is no slice of this split: said as such.
+  try {
+    merge_scene_slices({slice_files[0], decode_fissure_gltf(a, "whole")}, {"2.glb", "whole.glb"});
+    ADD_FAILURE() << "merged an unsliced output with a slice";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("whole.glb is an unsliced run's output and 2.glb is slice 2/2"), std::string::npos)
+        << e.what();
+  }
   SceneFractureOptions other_seed = one;
   other_seed.seed = 99;
   other_seed.slice = 1;

@@ -83,6 +83,7 @@ struct BodyFracture {
   std::vector<FragmentMesh> fragments; ///< world coordinates
   bool stress_cached = false;          ///< every static field came from the cache: no FEM was built
   std::string cache_warning;           ///< why a solved field could not be cached (the run goes on)
+  std::string overload;                ///< overload_note() of its loads, when they shatter it at once
   struct Seconds {
     double meshing = 0.0, preparation = 0.0, simulation = 0.0, fragments = 0.0;
   } seconds;
