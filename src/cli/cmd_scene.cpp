@@ -378,6 +378,7 @@ int run_scene_fracture(const SceneFractureArgs& args) {
   }
   SceneFractureOptions& options = setup.options;
   options.threads = thread_count();
+  options.strict = setup.project.strict;
   options.cancel = &interrupt_token();
   if (!args.no_cache) options.cache_dir = args.cache_dir.empty() ? default_cache_directory() : fs::path(args.cache_dir);
   // A bar on a terminal, one plain line per body otherwise (a log keeps them).

@@ -173,6 +173,17 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   // Which way a standing plate faces: towards the middle of the whole scene, fractured or not.
   const Eigen::Vector3d centre = work.empty() ? Eigen::Vector3d::Zero() : scene_centre(scene, out.bodies);
   const std::uint64_t cache_cap = options.cache_max_bytes > 0 ? options.cache_max_bytes : default_cache_size_limit();
+  // Each body's closedness check, made first for all of them under `strict` (so a body that
+  // would be skipped fails the run before any meshing), else inside each body's work.
+  std::vector<std::optional<SceneBodyCheck>> checks(work.size());
+  if (options.strict) {
+    if (!out.warnings.empty()) throw InvalidInput("--strict: " + out.warnings.front());
+    parallel_for_dynamic(work.size(), options.threads,
+                         [&](std::size_t w) { checks[w] = check_scene_body(scene, out.bodies[work[w]]); });
+    for (std::size_t w = 0; w < work.size(); ++w)
+      if (!checks[w]->fracturable)
+        throw InvalidInput("--strict: " + out.bodies[work[w]].path + " is not fracturable: " + checks[w]->reason);
+  }
   std::mutex done_mutex;
   int done = 0;
   // A cache that cannot be written is said once per kind (tet meshes, stress fields), as the
@@ -182,7 +193,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
     const std::size_t b = work[w];
     SceneBodyReport& report = out.reports[b];
     try {
-      SceneBodyCheck check = check_scene_body(scene, out.bodies[b]);
+      SceneBodyCheck check = checks[w] ? std::move(*checks[w]) : check_scene_body(scene, out.bodies[b]);
       report.repairs = check.repairs;
       if (!check.fracturable) throw InvalidInput(check.reason);
       const auto setup = options.body_setups.find(report.path);

@@ -491,6 +491,24 @@ TEST(SceneFracture, AnOpenBodyIsSkippedWithItsReason) {
   EXPECT_EQ(run.reports[0].status, SceneBodyReport::Status::Fractured);
   EXPECT_EQ(run.reports[1].status, SceneBodyReport::Status::Skipped);
   EXPECT_NE(run.reports[1].reason.find("open"), std::string::npos) << run.reports[1].reason;
+
+  // Strict: the open slab fails the run before any body reaches the mesher (it used to fail only
+  // after fracturing every other body).
+  SceneFractureOptions strict = tile_options(800);
+  strict.strict = true;
+  int meshed = 0;
+  strict.mesher = [&](const SurfaceMesh& surface, const TetrahedralizeOptions& o) {
+    ++meshed;
+    return tetrahedralize(surface, o);
+  };
+  try {
+    fracture_scene(read, strict);
+    ADD_FAILURE() << "a strict run skipped the open slab";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("--strict: /"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("is not fracturable"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(meshed, 0);
 }
 
 }  // namespace

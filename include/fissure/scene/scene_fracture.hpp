@@ -48,6 +48,10 @@ struct SceneBodySetup {
 
 struct SceneFractureOptions {
   SceneAssignments assignments;
+  /// Fail (InvalidInput) before any body is meshed when an assignment or setup matches nothing or
+  /// an assigned body of the slice is not fracturable, instead of warning and skipping it. A body
+  /// that fails later (its mesher refuses it) is still a skip: the caller's --strict sees it.
+  bool strict = false;
   /// By body path. A setup for a path that is no body is a warning, like an assignment.
   std::map<std::string, SceneBodySetup> body_setups;
   std::uint64_t seed = 1;                 ///< the project seed
