@@ -35,16 +35,13 @@ CLI::Validator finite_number() {
 }
 
 CLI::Validator parameter_range(const ParameterInfo& info) {
-  const std::string range = std::string(info.min_exclusive ? "(" : "[") + format_number(info.min) + ", " +
-                            format_number(info.max) + (info.max_exclusive ? ")" : "]") +
-                            (info.unit[0] ? std::string(" ") + info.unit : std::string());
+  const std::string range = parameter_range_text(info);
   return CLI::Validator(
-      [info](std::string& text) -> std::string {
+      [info, range](std::string& text) -> std::string {
         double value = 0.0;
         if (!read_number(text, value) || !std::isfinite(value)) return "'" + text + "' is not a finite number";
-        const std::string problem = parameter_problem(info, value, "");
-        // parameter_problem's text after its (empty) label: " 0 is outside (0, 100] m".
-        return problem.empty() ? std::string() : problem.substr(1);
+        if (!parameter_problem(info, value, info.flag).empty()) return text + " is outside " + range;
+        return {};
       },
       "in " + range);
 }

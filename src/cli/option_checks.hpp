@@ -19,7 +19,7 @@ CLI::Validator finite_number();
 CLI::Validator finite_in(double lo, double hi);
 
 /// A value of a parameter table's row (elastic or fracture): a finite number in the row's range,
-/// which the help shows ("NUM in (0, 100] m"); outside it, "0 is outside (0, 100] m", a
+/// which the help shows ("NUM:in (0, 100] m"); outside it, "0 is outside (0, 100] m", a
 /// command-line error like any other flag's.
 CLI::Validator parameter_range(const ParameterInfo& info);
 

@@ -22,9 +22,12 @@ std::string parameter_problem(const ParameterInfo& info, double value, const std
   // A non-finite value is not "outside (0, inf]" (inf is the bound's notation, not a value).
   if (!std::isfinite(value)) return label + " " + format_number(value) + " is not a finite number";
   if (!below && !above) return {};
-  return label + " " + format_number(value) + " is outside " + (info.min_exclusive ? "(" : "[") +
-         format_number(info.min) + ", " + format_number(info.max) + (info.max_exclusive ? ")" : "]") +
-         (info.unit[0] ? std::string(" ") + info.unit : std::string());
+  return label + " " + format_number(value) + " is outside " + parameter_range_text(info);
+}
+
+std::string parameter_range_text(const ParameterInfo& info) {
+  return (info.min_exclusive ? "(" : "[") + format_number(info.min) + ", " + format_number(info.max) +
+         (info.max_exclusive ? ")" : "]") + (info.unit[0] ? std::string(" ") + info.unit : std::string());
 }
 
 const std::array<ParameterInfo, 3>& elastic_material_parameters() {

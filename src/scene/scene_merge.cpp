@@ -69,10 +69,10 @@ ExportScene merge_scene_slices(const std::vector<ExportScene>& slices, const std
   for (std::size_t i = 0; i < slices.size(); ++i) ids.push_back(slice_id(slices[i], names[i]));
   const int n = ids[0].n;
   std::vector<int> slice_of_k(static_cast<std::size_t>(n) + 1, -1);
+  const auto which = [&](std::size_t j) {
+    return ids[j].n == 1 ? std::string("an unsliced run's output") : "slice " + std::to_string(ids[j].k) + "/" + std::to_string(ids[j].n);
+  };
   for (std::size_t i = 0; i < slices.size(); ++i) {
-    const auto which = [&](std::size_t j) {
-      return ids[j].n == 1 ? std::string("an unsliced run's output") : "slice " + std::to_string(ids[j].k) + "/" + std::to_string(ids[j].n);
-    };
     if (ids[i].run != ids[0].run)
       throw InvalidInput(names[i] + ": a slice of another run than " + names[0] +
                          " (another scene, assignments, seed, age, up or tet count)");

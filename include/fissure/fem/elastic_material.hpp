@@ -52,4 +52,7 @@ const std::array<ParameterInfo, 3>& elastic_material_parameters();
 /// whichever the caller shows its user). Numbers are printed by format_number.
 std::string parameter_problem(const ParameterInfo& info, double value, const std::string& label);
 
+/// The range of `info` as parameter_problem writes it: "(0, 100] m", "[0, 0.5)".
+std::string parameter_range_text(const ParameterInfo& info);
+
 }  // namespace fissure

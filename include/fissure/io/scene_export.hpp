@@ -85,8 +85,8 @@ void check_scene_output_path(const std::filesystem::path& path);
 /// The files write_scene(path, …) writes: `path`, and for OBJ its .mtl beside it.
 std::vector<std::filesystem::path> scene_output_files(const std::filesystem::path& path);
 
-/// The bytes of `scene` in `format`, turned to the format's up axis (ExportScene::up). For OBJ, the .obj file's; `mtl_name` is the name its
-/// `mtllib` line gives. Throws InvalidInput naming the part and triangle when a triangle indexes
+/// The bytes of `scene` in `format`, turned to the format's up axis (ExportScene::up). For OBJ,
+/// the .obj file's; `mtl_name` is the name its `mtllib` line gives. Throws InvalidInput naming the part and triangle when a triangle indexes
 /// a vertex or material that does not exist, or a value is not finite.
 std::string encode_scene(const ExportScene& scene, SceneFormat format, const std::string& mtl_name = {});
 
