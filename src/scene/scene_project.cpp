@@ -199,8 +199,10 @@ nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.
 
 fs::path project_path(const fs::path& project_file, const std::string& written) {
   const fs::path p(written);
-  if (p.is_absolute()) return p;
-  return (project_file.has_parent_path() ? project_file.parent_path() : fs::path(".")) / p;
+  // A project in the working folder keeps its paths as written: "s.glb", not "./s.glb", in
+  // every message and summary that names them.
+  if (p.is_absolute() || !project_file.has_parent_path()) return p;
+  return project_file.parent_path() / p;
 }
 
 bool is_scene_project_file(const fs::path& file) { return file.extension() == ".json"; }

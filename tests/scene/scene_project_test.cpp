@@ -71,6 +71,8 @@ TEST(SceneProject, AProjectReadsBackAsWritten) {
   EXPECT_EQ(q.bodies.at("/street/curb").up, std::optional<std::string>("+z"));
   EXPECT_EQ(project_path(dir / "p.json", q.output), dir / "out/broken.glb");
   EXPECT_EQ(project_path(dir / "p.json", "/abs/x.glb"), fs::path("/abs/x.glb"));
+  // A project named without a folder is in the working one: its paths stay as written.
+  EXPECT_EQ(project_path("p.json", "out/s.glb").string(), "out/s.glb");
 
   const SceneFractureOptions o = scene_fracture_options(q, "p.json");
   EXPECT_EQ(o.seed, 42u);
