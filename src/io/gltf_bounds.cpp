@@ -121,7 +121,10 @@ class GltfBounds {
         real = base64_length(uri, where);
         source = "its data URI";
       } else {
+        check_beside_scene(uri, where);
         std::error_code error;
+        if (!std::filesystem::is_regular_file(m_directory / uri, error) && !error)
+          throw IoError(m_name + ": " + where + ": its file '" + uri.substr(0, 200) + "' is not a regular file");
         const std::uintmax_t size = std::filesystem::file_size(m_directory / uri, error);
         if (error) throw IoError(m_name + ": " + where + ": cannot read its file '" + uri.substr(0, 200) + "': " + error.message());
         real = size;
@@ -132,6 +135,21 @@ class GltfBounds {
       fail(where + " claims " + std::to_string(stated) + " bytes, but " + source + " holds " + std::to_string(real));
     }
     m_buffers.push_back(stated);
+  }
+
+  // A buffer file must lie in the scene's folder or below it. A scene from elsewhere could
+  // otherwise name /etc/passwd or ../../.ssh/id_rsa as a buffer, and the export would carry those
+  // bytes on into a file the user shares. (glTF asks for relative URIs; absolute ones and other
+  // schemes such as http: are not read.)
+  void check_beside_scene(const std::string& uri, const std::string& where) const {
+    const std::string shown = "'" + uri.substr(0, 200) + "'";
+    const std::size_t colon = uri.find(':'), slash = uri.find('/');
+    if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+      throw IoError(m_name + ": " + where + ": its URI " + shown + " has a scheme; only relative file URIs and data: URIs are read");
+    const std::filesystem::path path = std::filesystem::path(uri).lexically_normal();
+    if (path.is_absolute() || path.has_root_name() || (!path.empty() && *path.begin() == ".."))
+      throw IoError(m_name + ": " + where + ": its file " + shown +
+                    " is outside the scene's folder; move it beside the scene and name it relatively");
   }
 
   // Decoded length of a base64 data URI; anything but clean base64 is refused.

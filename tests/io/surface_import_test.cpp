@@ -475,6 +475,45 @@ TEST(SurfaceImport, GltfRangesBeyondTheirDataAreRefused) {
   }
 }
 
+// A buffer is read only from the scene's folder or below it: a scene from elsewhere naming
+// /etc/passwd or ../secret.bin as a buffer would otherwise carry those bytes on into the export
+// (on 8a92ee1 both were read). Devices are never read.
+TEST(SurfaceImport, GltfBuffersOutsideTheScenesFolderAreRefused) {
+  const fs::path root = test::fresh_temp_dir("import-gltf-uri");
+  const fs::path dir = root / "scene";
+  fs::create_directories(dir / "sub");
+  std::string bin;
+  for (int corner : {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3}) {
+    const std::array<std::array<float, 3>, 4> p = {{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (float c : p[corner]) test::put(bin, c, false);
+  }
+  write_file_atomically(root / "outside.bin", bin);
+  write_file_atomically(dir / "sub" / "t.bin", bin);
+  fs::create_symlink("/dev/zero", dir / "zero.bin");
+  auto gltf = [&](const std::string& file, const std::string& uri) {
+    write_file_atomically(dir / file, R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 144, "uri": ")" + uri +
+                                          R"("}], "bufferViews": [{"buffer": 0, "byteLength": 144}], "accessors": [{"bufferView": 0,
+        "componentType": 5126, "type": "VEC3", "count": 12}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0})");
+    return dir / file;
+  };
+  SurfaceRepairReport report;
+  // Below the scene's folder, even through a detour, is fine.
+  EXPECT_EQ(import_surface(gltf("below.gltf", "sub/../sub/t.bin"), report).face_count(), 4);
+  const std::string outside = (root / "outside.bin").string();
+  const std::pair<fs::path, std::string> bad[] = {
+      {gltf("up.gltf", "../outside.bin"), "buffers[0]: its file '../outside.bin' is outside the scene's folder"},
+      {gltf("detour.gltf", "sub/../../outside.bin"), "buffers[0]: its file 'sub/../../outside.bin' is outside the scene's folder"},
+      {gltf("absolute.gltf", outside), "buffers[0]: its file '" + outside + "' is outside the scene's folder"},
+      {gltf("http.gltf", "http://example.com/t.bin"), "buffers[0]: its URI 'http://example.com/t.bin' has a scheme"},
+      {gltf("file.gltf", "file://" + outside), "buffers[0]: its URI 'file://" + outside + "' has a scheme"},
+      {gltf("device.gltf", "zero.bin"), "buffers[0]: its file 'zero.bin' is not a regular file"}};
+  for (const auto& [path, words] : bad) {
+    const std::string e = import_error(path);
+    EXPECT_EQ(e.rfind("IoError: " + path.string() + ": " + words, 0), 0u) << e;
+  }
+}
+
 // Formats that were never fuzzed are refused by name instead of being handed to assimp
 // (its 3DS reader, among others, was never checked against corrupt files).
 TEST(SurfaceImport, UnfuzzedFormatsAndSpecialFilesAreRefused) {
