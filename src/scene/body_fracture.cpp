@@ -98,6 +98,7 @@ BodyFracture fracture_body_surface(const BodyFractureRequest& request, int threa
   out.fragments = mesh_fragments(*mesh, out.result.cracks, static_cast<int>(out.result.cracks.size()), threads);
   out.seconds.fragments = seconds_since(clock);
   out.params = params;
+  if (request.keep_mesh) out.mesh = std::move(mesh);
   return out;
 }
 

@@ -24,21 +24,6 @@
 namespace fissure {
 namespace {
 
-// The assignment of `body`, or nothing: its node's or its nearest assigned ancestor's, else that
-// of the first of its meshes' scene materials that has one.
-const std::string* assignment_of(const ImportedScene& scene, const SceneBody& body, const SceneAssignments& a) {
-  for (int n = body.node; n >= 0; n = scene.nodes[static_cast<std::size_t>(n)].parent) {
-    if (auto it = a.by_path.find(scene.nodes[static_cast<std::size_t>(n)].path); it != a.by_path.end()) return &it->second;
-  }
-  for (int mesh : body.meshes) {
-    const int m = scene.meshes[static_cast<std::size_t>(mesh)].material;
-    if (m < 0) continue;
-    if (auto it = a.by_material.find(scene.materials[static_cast<std::size_t>(m)].name); it != a.by_material.end())
-      return &it->second;
-  }
-  return nullptr;
-}
-
 std::vector<std::string> unmatched_assignments(const ImportedScene& scene, const std::vector<SceneBody>& bodies,
                                                const SceneAssignments& a) {
   std::vector<std::string> warnings;
@@ -156,7 +141,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
   for (std::size_t b = 0; b < out.bodies.size(); ++b) {
     SceneBodyReport& report = out.reports[b];
     report.path = out.bodies[b].path;
-    const std::string* assignment = assignment_of(scene, out.bodies[b], options.assignments);
+    const std::string* assignment = body_assignment(scene, out.bodies[b], options.assignments);
     if (!assignment) continue;  // Unassigned: nothing about it is computed
     report.material = *assignment;
     report.seed = body_seed(options.seed, report.path);
@@ -214,6 +199,7 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
       request.age = options.age;
       request.target_tets = options.target_tets;
       request.memory_limit_bytes = options.memory_limit_bytes;
+      request.keep_mesh = options.keep_meshes;
       if (setup != options.body_setups.end()) {
         request.patch_loads = setup->second.loads;
         request.supports = setup->second.supports;
@@ -280,6 +266,19 @@ SceneFracture fracture_scene(const ImportedScene& scene, const SceneFractureOpti
     }
   }
   return out;
+}
+
+const std::string* body_assignment(const ImportedScene& scene, const SceneBody& body, const SceneAssignments& a) {
+  for (int n = body.node; n >= 0; n = scene.nodes[static_cast<std::size_t>(n)].parent) {
+    if (auto it = a.by_path.find(scene.nodes[static_cast<std::size_t>(n)].path); it != a.by_path.end()) return &it->second;
+  }
+  for (int mesh : body.meshes) {
+    const int m = scene.meshes[static_cast<std::size_t>(mesh)].material;
+    if (m < 0) continue;
+    if (auto it = a.by_material.find(scene.materials[static_cast<std::size_t>(m)].name); it != a.by_material.end())
+      return &it->second;
+  }
+  return nullptr;
 }
 
 ExportScene scene_export(const ImportedScene& scene, const SceneFracture& fracture) {

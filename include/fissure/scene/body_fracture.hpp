@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ struct BodyFractureRequest {
   /// A mesh whose estimated memory exceeds this is refused (TetrahedralizeOptions); 0: this
   /// machine's physical memory.
   std::uint64_t memory_limit_bytes = 0;
+  /// Keep the tet mesh in BodyFracture::mesh (the studio's age slider re-meshes fragments from
+  /// it); off, a run over thousands of bodies holds only their fragments.
+  bool keep_mesh = false;
 };
 
 /// Where a body's static stress fields are cached (static_stress_cache.hpp, beside the tet meshes);
@@ -81,6 +85,10 @@ struct BodyFracture {
   bool posterior_draw = false;         ///< the five fitted parameters were drawn from a posterior
   FractureResult result;
   std::vector<FragmentMesh> fragments; ///< world coordinates
+  /// With BodyFractureRequest::keep_mesh, the tet mesh it was fractured on (world coordinates):
+  /// mesh_fragments(*mesh, result.cracks, result.crack_count_at(age)) gives its fragments at an
+  /// earlier age without re-simulating (the studio's age slider). Null otherwise.
+  std::shared_ptr<const TetMesh> mesh;
   bool stress_cached = false;          ///< every static field came from the cache: no FEM was built
   std::string cache_warning;           ///< why a solved field could not be cached (the run goes on)
   std::string overload;                ///< overload_note() of its loads, when they shatter it at once

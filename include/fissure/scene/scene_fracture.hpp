@@ -64,6 +64,7 @@ struct SceneFractureOptions {
   int target_tets = 0;                    ///< per body; 0: BodyFractureRequest's default
   std::uint64_t memory_limit_bytes = 0;   ///< per body's mesh (BodyFractureRequest)
   int threads = 1;                        ///< bodies run in parallel, one thread each
+  bool keep_meshes = false;               ///< BodyFractureRequest::keep_mesh for every body
   int slice = 1, slices = 1;              ///< K of N, K from 1
   Mesher mesher;                          ///< empty: tetrahedralize(), through the cache below
   /// Tet meshes and static stress fields are cached here by content (tet_mesh_cache.hpp,
@@ -125,6 +126,10 @@ struct SceneFracture {
   /// materials) and of every option but the slice. scene_merge.hpp joins only slices that share it.
   std::string run;
 };
+
+/// The fracture material `body` is assigned, or null: its node's or its nearest assigned
+/// ancestor's, else that of the first of its meshes' scene materials that has one.
+const std::string* body_assignment(const ImportedScene& scene, const SceneBody& body, const SceneAssignments& assignments);
 
 /// The body's own seed: a hash of (project seed, body path).
 std::uint64_t body_seed(std::uint64_t project_seed, const std::string& path);
