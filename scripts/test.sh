@@ -3,7 +3,7 @@
 # then builds a second tree with AddressSanitizer + UndefinedBehaviorSanitizer and runs the unit
 # tests and fuzzers again under them (a crash-free run without sanitizers can still hide an
 # out-of-bounds read on corrupt input).
-# FISSURE_TEST_LABEL=unit (or slow, bench-smoke, gui) runs one label only; FISSURE_SANITIZE_TESTS=0
+# FISSURE_TEST_LABEL=unit (or slow, bench-smoke, gui: the studio under xvfb-run) runs one label only; FISSURE_SANITIZE_TESTS=0
 # skips the sanitizer pass (quick local runs).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -20,8 +20,10 @@ if [[ -n "${FISSURE_TEST_LABEL:-}" ]]; then label_args=(-L "$FISSURE_TEST_LABEL"
 if [[ "${FISSURE_SANITIZE_TESTS:-1}" != 0 ]]; then
   asan_dir=${FISSURE_ASAN_BUILD_DIR:-$root/build-asan}
   echo "== AddressSanitizer + UndefinedBehaviorSanitizer: unit tests and fuzzers"
+  # Without the studio for now: its logic tests have not yet been run under the sanitizers with
+  # Qt (its allocations at exit may need LeakSanitizer suppressions); they run in the main tree.
   FISSURE_BUILD_DIR=$asan_dir "$root/scripts/build.sh" -DFISSURE_SANITIZE=address,undefined \
-    -DFISSURE_BUILD_BENCHMARKS=OFF
+    -DFISSURE_BUILD_BENCHMARKS=OFF -DFISSURE_BUILD_STUDIO=OFF
   # detect_leaks stays on; halt_on_error makes a finding fail its test.
   export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:abort_on_error=1}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
