@@ -63,7 +63,7 @@ BodyGeometry whole_body_geometry(const ImportedScene& scene, const SceneBody& bo
 }
 
 BodyGeometry fragment_geometry(const std::vector<FragmentMesh>& fragments, const Eigen::Vector3d& colour,
-                               const Eigen::Vector3d& line_colour) {
+                               const Eigen::Vector3d& line_colour, double scale) {
   BodyGeometry g;
   for (std::size_t f = 0; f < fragments.size(); ++f) {
     const FragmentMesh& m = fragments[f];
@@ -76,8 +76,8 @@ BodyGeometry fragment_geometry(const std::vector<FragmentMesh>& fragments, const
     std::map<std::pair<int, int>, std::pair<int, int>> edge_faces;  // → (crack faces, outer faces)
     for (Eigen::Index t = 0; t < m.triangles.rows(); ++t) {
       const bool crack = t < static_cast<Eigen::Index>(m.triangle_crack.size()) && m.triangle_crack[static_cast<std::size_t>(t)] >= 0;
-      add_triangle(g, m.vertices.row(m.triangles(t, 0)).transpose(), m.vertices.row(m.triangles(t, 1)).transpose(),
-                   m.vertices.row(m.triangles(t, 2)).transpose(), colour, crack ? 1.0f : 0.0f);
+      add_triangle(g, scale * m.vertices.row(m.triangles(t, 0)).transpose(), scale * m.vertices.row(m.triangles(t, 1)).transpose(),
+                   scale * m.vertices.row(m.triangles(t, 2)).transpose(), colour, crack ? 1.0f : 0.0f);
       for (int k = 0; k < 3; ++k) {
         int a = m.triangles(t, k), b = m.triangles(t, (k + 1) % 3);
         if (a > b) std::swap(a, b);
@@ -87,9 +87,9 @@ BodyGeometry fragment_geometry(const std::vector<FragmentMesh>& fragments, const
     }
     for (const auto& [edge, count] : edge_faces) {
       if (count.first == 0 || count.second == 0) continue;
-      put(g.lines, m.vertices.row(edge.first).transpose());
+      put(g.lines, scale * m.vertices.row(edge.first).transpose());
       put(g.lines, line_colour);
-      put(g.lines, m.vertices.row(edge.second).transpose());
+      put(g.lines, scale * m.vertices.row(edge.second).transpose());
       put(g.lines, line_colour);
     }
     r.count = surface_vertices(g) - r.first;

@@ -31,10 +31,11 @@ struct BodyGeometry {
 /// A body not fractured: its meshes in world coordinates, each in its scene material's colour.
 BodyGeometry whole_body_geometry(const ImportedScene& scene, const SceneBody& body);
 
-/// A fractured body's fragments (world coordinates): outer faces in `colour`, crack faces flagged
+/// A fractured body's fragments (world coordinates, m, drawn × `scale`: 1 / the scene's metres
+/// per unit, so they sit on the scene's own bodies): outer faces in `colour`, crack faces flagged
 /// (the shader gives them the crack colour), crack lines in `line_colour`.
 BodyGeometry fragment_geometry(const std::vector<FragmentMesh>& fragments, const Eigen::Vector3d& colour,
-                               const Eigen::Vector3d& line_colour);
+                               const Eigen::Vector3d& line_colour, double scale = 1.0);
 
 /// The base colour a body is drawn in: its first mesh's scene material's (0.8 grey without one).
 Eigen::Vector3d body_colour(const ImportedScene& scene, const SceneBody& body);

@@ -80,14 +80,28 @@ MainWindow::MainWindow(QWidget* parent)
     log(QString("Opened %1: %2 bodies").arg(m_document.path()).arg(m_document.bodies().size()));
     for (const std::string& w : m_document.scene().warnings) log("warning: " + QString::fromStdString(w));
   });
-  connect(&m_document, &StudioDocument::body_changed, this, [this] { refresh_age_range(); });
+  // A fracture undone, an age scrubbed or a fragment deleted: the selection keeps only what is
+  // still shown, so no edit lands on fragments that are not on screen.
+  auto prune = [this] { m_selection.set(m_document.valid_refs(m_selection.items())); };
+  connect(&m_document, &StudioDocument::body_changed, this, [this, prune] {
+    prune();
+    refresh_age_range();
+    refresh_properties();
+  });
+  connect(&m_document, &StudioDocument::age_changed, this, [this, prune] {
+    prune();
+    refresh_properties();
+  });
+  connect(&m_document, &StudioDocument::edits_changed, this, prune);
   connect(&m_document, &StudioDocument::assignments_changed, this, &MainWindow::refresh_properties);
   connect(&m_selection, &Selection::changed, this, [this] {
     refresh_properties();
     sync_outliner_selection();
   });
   connect(m_document.undo_stack(), &QUndoStack::cleanChanged, this, &MainWindow::refresh_title);
-  connect(m_viewport, &Viewport::gl_failed, this, [this](const QString& m) { fail("The 3-D view cannot draw: " + m); });
+  // Queued: the dialog must not open inside initializeGL, with the context current.
+  connect(m_viewport, &Viewport::gl_failed, this, [this](const QString& m) { fail("The 3-D view cannot draw: " + m); },
+          Qt::QueuedConnection);
 
   connect(&m_jobs, &StudioJobs::fracture_started, this, [this](int bodies) {
     m_progress->setRange(0, bodies);
@@ -115,6 +129,7 @@ MainWindow::MainWindow(QWidget* parent)
     m_status->setText("Fracture failed");
     fail(m);  // logs it too
   });
+  connect(&m_jobs, &StudioJobs::fracture_refused, this, [this](const QString& m) { fail(m); });
   connect(&m_jobs, &StudioJobs::age_failed, this, [this](const QString& m) { log("Fragments at this age could not be meshed: " + m); });
   refresh_library();
   refresh_title();
@@ -308,6 +323,8 @@ void MainWindow::fail(const QString& message) {
 }
 
 bool MainWindow::open_file(const QString& path) {
+  // A fracture of the scene open now would be thrown away: stop it instead of letting it run on.
+  m_jobs.cancel_fracture();
   try {
     m_document.open(path);
   } catch (const std::exception& e) {
@@ -357,8 +374,11 @@ bool MainWindow::fracture_selection(bool all_of_material) {
 }
 
 void MainWindow::edit_selected_fragments(const std::function<void(FragmentEdit&)>& change, const QString& text) {
+  for (int b : m_selection.bodies())
+    if (m_document.fracture_of(b) && !m_document.shows_its_age(b))
+      return fail("The fragments at this age are still being made; edit them once they show.");
   std::vector<std::pair<FragmentRef, FragmentEdit>> changes;
-  for (const FragmentRef& r : m_selection.fragments()) {
+  for (const FragmentRef& r : m_document.valid_refs(m_selection.fragments())) {
     FragmentEdit e = m_document.edit_of(r);
     change(e);
     changes.emplace_back(r, e);
@@ -370,7 +390,8 @@ void MainWindow::edit_selected_fragments(const std::function<void(FragmentEdit&)
 
 bool MainWindow::export_to(const QString& path, bool selected_only) {
   try {
-    const std::set<FragmentRef> chosen = m_selection.fragments();
+    if (!m_document.is_open()) throw InvalidInput("open a scene first");
+    const std::set<FragmentRef> chosen = m_document.valid_refs(m_selection.fragments());
     if (selected_only && chosen.empty()) throw InvalidInput("select the fragments to export first");
     const ExportScene scene = m_document.export_scene(selected_only ? &chosen : nullptr);
     write_scene(path.toStdString(), scene);
@@ -384,6 +405,7 @@ bool MainWindow::export_to(const QString& path, bool selected_only) {
 
 bool MainWindow::save_project_to(const QString& path) {
   try {
+    if (!m_document.is_open()) throw InvalidInput("open a scene first");
     m_document.save_project(path);
   } catch (const std::exception& e) {
     fail("Saving " + path + " failed: " + what(e));
@@ -483,10 +505,17 @@ void MainWindow::sync_outliner_selection() {
   m_syncing_selection = true;
   QItemSelection chosen;
   for (const FragmentRef& r : m_selection.items()) {
+    // (Called while the outliner rebuilds, before the selection is pruned: refs may be stale.)
+    if (r.body < 0 || r.body >= static_cast<int>(m_document.bodies().size())) continue;
     QStandardItem* item = m_outliner_model.node_item(m_document.bodies()[static_cast<std::size_t>(r.body)].node);
     if (item && r.fragment >= 0) {
-      for (int c = 0; c < item->rowCount(); ++c)
-        if (item->child(c)->data(OutlinerModel::FragmentRole).toInt() == r.fragment) item = item->child(c);
+      QStandardItem* row = nullptr;
+      for (int c = 0; c < item->rowCount() && !row; ++c) {
+        QStandardItem* child = item->child(c);
+        if (child->data(OutlinerModel::FragmentRole).toInt() == r.fragment && child->data(OutlinerModel::CracksRole).toInt() == r.cracks)
+          row = child;
+      }
+      item = row;  // none: a fragment not listed now is not shown as its body
     }
     if (item) chosen.select(item->index(), item->index());
   }

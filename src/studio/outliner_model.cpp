@@ -8,6 +8,7 @@ OutlinerModel::OutlinerModel(StudioDocument* document, QObject* parent) : QStand
   setHorizontalHeaderLabels({"Name", "Fracture material"});
   connect(document, &StudioDocument::scene_reset, this, &OutlinerModel::rebuild);
   connect(document, &StudioDocument::body_changed, this, &OutlinerModel::update_body);
+  connect(document, &StudioDocument::edits_changed, this, &OutlinerModel::update_body);  // "(hidden)", deleted rows
   connect(document, &StudioDocument::age_changed, this, [this] {
     for (int b = 0; b < static_cast<int>(m_document->bodies().size()); ++b)
       if (m_document->fracture_of(b)) update_body(b);

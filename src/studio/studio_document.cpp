@@ -38,6 +38,39 @@ void StudioDocument::open(const QString& path) {
   emit scene_reset();
 }
 
+Eigen::Vector3d StudioDocument::up() const {
+  if (m_project.up) {
+    try {
+      if (const auto o = scene_fracture_options(m_project, m_path.toStdString()); o.up) return o.up->normalized();
+    } catch (const Error&) {
+      // open() refused a project whose up does not parse; nothing else sets it
+    }
+  }
+  return m_scene->up;
+}
+
+bool StudioDocument::shows_its_age(int body) const {
+  int cracks = -1;
+  if (!shown_fragments(body, &cracks)) return false;
+  return cracks == shown_cracks(body);
+}
+
+std::set<FragmentRef> StudioDocument::valid_refs(const std::set<FragmentRef>& refs) const {
+  std::set<FragmentRef> out;
+  for (const FragmentRef& r : refs) {
+    if (r.body < 0 || r.body >= static_cast<int>(m_bodies.size())) continue;
+    if (r.fragment < 0) {
+      out.insert(r);
+      continue;
+    }
+    int cracks = -1;
+    const auto fragments = shown_fragments(r.body, &cracks);
+    if (!fragments || cracks != r.cracks || r.fragment >= static_cast<int>(fragments->size()) || edit_of(r).deleted) continue;
+    out.insert(r);
+  }
+  return out;
+}
+
 int StudioDocument::body_of_node(int node) const {
   return node >= 0 && node < static_cast<int>(m_body_of_node.size()) ? m_body_of_node[static_cast<std::size_t>(node)] : -1;
 }
@@ -160,6 +193,12 @@ void StudioDocument::add_fragments(int body, const BodyFractureState* of, int cr
   emit body_changed(body);
 }
 
+void StudioDocument::mark_failed(int body, const BodyFractureState* of, int cracks) {
+  if (body < 0 || body >= static_cast<int>(m_fractures.size())) return;
+  BodyFractureState* state = m_fractures[static_cast<std::size_t>(body)].get();
+  if (state && state == of) state->failed_counts.insert(cracks);
+}
+
 FragmentEdit StudioDocument::edit_of(const FragmentRef& f) const {
   const auto state = fracture_of(f.body);
   if (!state) return {};
@@ -176,7 +215,7 @@ void StudioDocument::set_edit(const FragmentRef& f, const FragmentEdit& e) {
   if (f.fragment < 0) return;
   if (f.fragment >= static_cast<int>(edits.size())) edits.resize(static_cast<std::size_t>(f.fragment) + 1);
   edits[static_cast<std::size_t>(f.fragment)] = e;
-  emit body_changed(f.body);
+  emit edits_changed(f.body);
 }
 
 void StudioDocument::set_explode(double factor) {
@@ -268,7 +307,8 @@ ExportScene StudioDocument::export_scene(const std::set<FragmentRef>* only) cons
   if (!only) return scene_export(*m_scene, fracture);
 
   // Just the chosen fragments: each body's, as fragment_scene() writes a body's, side by side
-  // in world coordinates, their names prefixed with their body's node name.
+  // in world coordinates (the scene's units, so they line up with it), their names prefixed
+  // with their body's node name.
   ExportScene out;
   out.up = fracture.up;
   out.frame_name = "fragments";
@@ -286,8 +326,11 @@ ExportScene StudioDocument::export_scene(const std::set<FragmentRef>* only) cons
     }
     const int base = static_cast<int>(out.parts.size());
     const std::string prefix = m_scene->nodes[static_cast<std::size_t>(m_bodies[b].node)].name + ".";
+    const double to_scene = 1.0 / m_project.unit;  // fragments are in metres; the file in the scene's units
     for (ExportPart p : part_scene.parts) {
       p.name = prefix + p.name;
+      p.translation *= to_scene;
+      p.vertices *= to_scene;
       if (p.parent >= 0) p.parent += base;
       for (int& m : p.triangle_material) m = remap[static_cast<std::size_t>(m)];
       out.parts.push_back(std::move(p));

@@ -23,7 +23,7 @@ namespace fissure::studio {
 
 /// What the artist did to one fragment.
 struct FragmentEdit {
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< moved by, world units
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();  ///< moved by, world frame, m (as fragments are)
   bool hidden = false;   ///< not drawn; still exported
   bool deleted = false;  ///< neither drawn nor exported
   bool operator==(const FragmentEdit& o) const { return offset == o.offset && hidden == o.hidden && deleted == o.deleted; }
@@ -38,6 +38,7 @@ struct BodyFractureState {
   /// at once, the others by the age job when the slider first reaches them.
   std::map<int, std::shared_ptr<const std::vector<FragmentMesh>>> fragments_at;
   std::map<int, std::vector<FragmentEdit>> edits;  ///< by crack count, one per fragment
+  std::set<int> failed_counts;  ///< crack counts whose fragments could not be meshed (not retried)
   int crack_count() const { return static_cast<int>(fractured.fracture.result.cracks.size()); }
 };
 
@@ -67,6 +68,10 @@ class StudioDocument : public QObject {
   int body_of_node(int node) const;
 
   const SceneProject& project() const { return m_project; }
+  /// The scene's up axis as fractures take it (the project's "up", else the format's).
+  Eigen::Vector3d up() const;
+  /// Metres per scene unit (the project's "unit"): fragments are in metres, the scene in its units.
+  double unit() const { return m_project.unit; }
   QUndoStack* undo_stack() { return &m_undo; }
 
   // --- assignments (set through AssignMaterialCommand) ---
@@ -100,8 +105,16 @@ class StudioDocument : public QObject {
   /// The fragments shown for a fractured body (null: not fractured). When the age's fragments
   /// are not meshed yet, the nearest meshed crack count's, until add_fragments() brings them.
   std::shared_ptr<const std::vector<FragmentMesh>> shown_fragments(int body, int* cracks = nullptr) const;
+  /// True when the fragments shown for `body` are those of the age shown (not a stand-in
+  /// while the age job meshes them).
+  bool shows_its_age(int body) const;
+  /// The refs of `refs` that name a fragment shown now (its body fractured, its crack count the
+  /// one shown, not deleted) or a body of this scene.
+  std::set<FragmentRef> valid_refs(const std::set<FragmentRef>& refs) const;
   /// Stores fragments the age job meshed (kept while the body's result stays the same).
   void add_fragments(int body, const BodyFractureState* of, int cracks, std::shared_ptr<const std::vector<FragmentMesh>> fragments);
+  /// Notes that the age job could not mesh `cracks` for the body's current result `of`.
+  void mark_failed(int body, const BodyFractureState* of, int cracks);
 
   // --- fragment edits (set through FragmentEditCommand) ---
   FragmentEdit edit_of(const FragmentRef& f) const;
@@ -109,7 +122,7 @@ class StudioDocument : public QObject {
   /// Pushes fragments out of their body's centre by `factor` of their distance (0: together).
   double explode() const { return m_explode; }
   void set_explode(double factor);
-  /// Where fragment f is drawn: its edit's offset plus the exploded view's push.
+  /// Where fragment f is drawn: its edit's offset plus the exploded view's push, in metres.
   Eigen::Vector3d drawn_offset(const FragmentRef& f) const;
 
   // --- export ---
@@ -123,7 +136,8 @@ class StudioDocument : public QObject {
  signals:
   void scene_reset();               ///< a new scene is open
   void assignments_changed();
-  void body_changed(int body);      ///< its fracture, fragments or edits changed
+  void body_changed(int body);      ///< its fracture or its fragments changed
+  void edits_changed(int body);     ///< an edit of its fragments changed (geometry is the same)
   void age_changed();
   void explode_changed();
 

@@ -19,22 +19,22 @@ StudioJobs::StudioJobs(StudioDocument* document, QObject* parent)
 
 bool StudioJobs::fracture(const std::vector<int>& bodies, const QString& text) {
   if (m_fracture.running()) {
-    emit fracture_failed("A fracture is already running: wait for it or cancel it (Esc).");
+    emit fracture_refused("A fracture is already running: wait for it or cancel it (Esc).");
     return false;
   }
   std::vector<int> assigned;
   for (int b : bodies)
     if (!m_document->material_of(b).empty()) assigned.push_back(b);
   if (assigned.empty()) {
-    emit fracture_failed(bodies.empty() ? "Nothing is selected to fracture."
-                                        : "No fracture material is assigned to the selection: assign one from the library first.");
+    emit fracture_refused(bodies.empty() ? "Nothing is selected to fracture."
+                                         : "No fracture material is assigned to the selection: assign one from the library first.");
     return false;
   }
   SceneFractureOptions options;
   try {
     options = m_document->fracture_options(assigned);
   } catch (const Error& e) {
-    emit fracture_failed(QString::fromStdString(e.what()));
+    emit fracture_refused(QString::fromStdString(e.what()));
     return false;
   }
   options.threads = m_threads;
@@ -50,7 +50,10 @@ bool StudioJobs::fracture(const std::vector<int>& bodies, const QString& text) {
     try {
       auto result = std::make_shared<SceneFracture>(fracture_scene(*scene, options));
       return [this, result, document, text, scene] {
-        if (document->scene_ptr() != scene) return;  // another scene was opened meanwhile
+        if (document->scene_ptr() != scene) {  // another scene was opened meanwhile
+          emit fracture_cancelled();
+          return;
+        }
         QStringList skipped;
         int broken = 0;
         for (const SceneBodyReport& r : result->reports) {
@@ -84,7 +87,7 @@ void StudioJobs::mesh_next_age() {
     const auto state = m_document->fracture_of(b);
     if (!state) continue;
     const int want = m_document->shown_cracks(b);
-    if (state->fragments_at.count(want) || m_age_failed.count({state.get(), want}) || !state->fractured.fracture.mesh) continue;
+    if (state->fragments_at.count(want) || state->failed_counts.count(want) || !state->fractured.fracture.mesh) continue;
     StudioDocument* document = m_document;
     m_age.start([this, state, want, b, document](const CancelToken&) -> std::function<void()> {
       try {
@@ -96,8 +99,8 @@ void StudioJobs::mesh_next_age() {
         };
       } catch (const std::exception& e) {
         // Not retried (the slider would loop on it); the nearest meshed age stays shown.
-        return [this, state, want, message = QString::fromStdString(e.what())] {
-          m_age_failed.insert({state.get(), want});
+        return [this, document, b, state, want, message = QString::fromStdString(e.what())] {
+          document->mark_failed(b, state.get(), want);
           emit age_failed(message);
         };
       }

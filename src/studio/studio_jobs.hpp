@@ -22,7 +22,7 @@ class StudioJobs : public QObject {
   explicit StudioJobs(StudioDocument* document, QObject* parent = nullptr);
 
   /// Fractures `bodies` (those with a material; the others are ignored) in the background.
-  /// False, with fracture_failed(), when none has a material or a fracture is already running.
+  /// False, with fracture_refused(), when none has a material or a fracture is already running.
   bool fracture(const std::vector<int>& bodies, const QString& text);
   void cancel_fracture();
   bool fracture_running() const { return m_fracture.running(); }
@@ -37,6 +37,8 @@ class StudioJobs : public QObject {
   /// After the result was pushed as one undo step; `summary` says what broke and what did not.
   void fracture_finished(const QString& summary);
   void fracture_failed(const QString& message);
+  /// A fracture not started (nothing assigned, one already running): the running one, if any, goes on.
+  void fracture_refused(const QString& message);
   void fracture_cancelled();
   void age_meshed(int body, int cracks);
   void age_failed(const QString& message);
@@ -46,7 +48,6 @@ class StudioJobs : public QObject {
   StudioDocument* m_document;
   BackgroundTask m_fracture, m_age;
   std::filesystem::path m_cache;
-  std::set<std::pair<const BodyFractureState*, int>> m_age_failed;
   int m_threads = 1;
 };
 

@@ -40,7 +40,7 @@ Viewport::Viewport(StudioDocument* document, Selection* selection, QWidget* pare
   setFocusPolicy(Qt::StrongFocus);
   setMinimumSize(320, 240);
   connect(document, &StudioDocument::scene_reset, this, [this] {
-    m_camera.set_up(m_document->scene().up);
+    m_camera.set_up(m_document->up());
     rebuild_all();
     frame_all();
   });
@@ -49,11 +49,16 @@ Viewport::Viewport(StudioDocument* document, Selection* selection, QWidget* pare
     update();
   });
   connect(document, &StudioDocument::age_changed, this, [this] {
-    for (int b = 0; b < static_cast<int>(m_bodies.size()); ++b)
-      if (m_document->fracture_of(b)) rebuild_body(b);
+    // Only bodies whose shown crack count moved: a slider tick within one crack's interval rebuilds nothing.
+    for (int b = 0; b < static_cast<int>(m_bodies.size()); ++b) {
+      int cracks = 0;
+      if (m_document->shown_fragments(b, &cracks) && cracks != m_bodies[static_cast<std::size_t>(b)].cracks) rebuild_body(b);
+    }
     update();
   });
   connect(document, &StudioDocument::explode_changed, this, qOverload<>(&QWidget::update));
+  // Moves, hides and deletes are uniforms and skipped ranges: nothing to rebuild.
+  connect(document, &StudioDocument::edits_changed, this, qOverload<>(&QWidget::update));
   connect(selection, &Selection::changed, this, qOverload<>(&QWidget::update));
 }
 
@@ -99,7 +104,7 @@ void Viewport::resizeGL(int, int) {}
 void Viewport::build_grid() {
   // A grid of 1-unit cells on the ground plane (orthogonal to up, through the origin), 20 × 20,
   // and the two horizontal axes in Blender's red and green.
-  const Eigen::Vector3d up = m_document->is_open() ? m_document->scene().up : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d up = m_document->is_open() ? m_document->up() : Eigen::Vector3d::UnitY();
   Eigen::Index least = 0;
   up.cwiseAbs().minCoeff(&least);
   const Eigen::Vector3d a = (Eigen::Vector3d::Unit(least) - up * up(least)).normalized();
@@ -150,7 +155,8 @@ void Viewport::rebuild_body(int body) {
   const SceneBody& scene_body = m_document->bodies()[static_cast<std::size_t>(body)];
   int cracks = 0;
   if (const auto fragments = m_document->shown_fragments(body, &cracks)) {
-    b.geometry = fragment_geometry(*fragments, body_colour(m_document->scene(), scene_body), kCrackLineColour);
+    b.geometry = fragment_geometry(*fragments, body_colour(m_document->scene(), scene_body), kCrackLineColour,
+                                   1.0 / m_document->unit());
     b.cracks = cracks;
   } else {
     b.geometry = whole_body_geometry(m_document->scene(), scene_body);
@@ -162,7 +168,9 @@ void Viewport::rebuild_body(int body) {
 void Viewport::upload(BodyBuffers& b) {
   auto fill = [this](std::unique_ptr<QOpenGLVertexArrayObject>& vao, std::unique_ptr<QOpenGLBuffer>& vbo,
                      const std::vector<float>& data, bool surface) {
-    if (!vao) {
+    // Created anew when missing or when the context they were made in is gone (a QOpenGLWidget
+    // gets a new one when it is re-parented).
+    if (!vao || !vao->isCreated()) {
       vao = std::make_unique<QOpenGLVertexArrayObject>();
       vao->create();
       vbo = std::make_unique<QOpenGLBuffer>(QOpenGLBuffer::VertexBuffer);
@@ -193,6 +201,10 @@ FragmentRef Viewport::ref_of(int body, const BodyBuffers& b, const BodyGeometry:
   return {body, r.fragment < 0 ? 0 : b.cracks, r.fragment};
 }
 
+Eigen::Vector3d Viewport::drawn_offset(const FragmentRef& r) const {
+  return r.fragment < 0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(m_document->drawn_offset(r) / m_document->unit());
+}
+
 bool Viewport::drawn(const FragmentRef& r) const {
   if (r.fragment < 0) return true;
   const FragmentEdit e = m_document->edit_of(r);
@@ -219,7 +231,7 @@ void Viewport::paintGL() {
   m_grid_vao.release();
 
   // Light from over the viewer's shoulder, so what faces the camera reads brightest.
-  const Eigen::Vector3d light = (-m_camera.forward() + 0.6 * m_document->scene().up).normalized();
+  const Eigen::Vector3d light = (-m_camera.forward() + 0.6 * m_document->up()).normalized();
   m_surface_program->bind();
   m_surface_program->setUniformValue("u_view_projection", mvp);
   m_surface_program->setUniformValue("u_light", QVector3D(light.x(), light.y(), light.z()));
@@ -235,7 +247,7 @@ void Viewport::paintGL() {
     for (const BodyGeometry::Range& r : b.geometry.ranges) {
       const FragmentRef ref = ref_of(body, b, r);
       if (!drawn(ref)) continue;
-      const Eigen::Vector3d offset = r.fragment < 0 ? Eigen::Vector3d::Zero() : m_document->drawn_offset(ref);
+      const Eigen::Vector3d offset = drawn_offset(ref);
       m_surface_program->setUniformValue("u_offset", QVector3D(offset.x(), offset.y(), offset.z()));
       const bool lit = body_selected || m_selection->contains(ref);
       m_surface_program->setUniformValue("u_highlight", lit ? QVector3D(kHighlight.x(), kHighlight.y(), kHighlight.z()) : QVector3D());
@@ -253,7 +265,7 @@ void Viewport::paintGL() {
     for (const BodyGeometry::Range& r : b.geometry.ranges) {
       const FragmentRef ref = ref_of(body, b, r);
       if (r.line_count == 0 || !drawn(ref)) continue;
-      const Eigen::Vector3d offset = r.fragment < 0 ? Eigen::Vector3d::Zero() : m_document->drawn_offset(ref);
+      const Eigen::Vector3d offset = drawn_offset(ref);
       m_line_program->setUniformValue("u_offset", QVector3D(offset.x(), offset.y(), offset.z()));
       glDrawArrays(GL_LINES, r.first_line, r.line_count);
     }
@@ -273,7 +285,7 @@ Eigen::AlignedBox3d Viewport::scene_bounds(bool selection_only) const {
     for (const BodyGeometry::Range& r : b.geometry.ranges) {
       const FragmentRef ref = ref_of(body, b, r);
       if (!m_selection->contains(ref)) continue;
-      const Eigen::Vector3d offset = m_document->drawn_offset(ref);
+      const Eigen::Vector3d offset = drawn_offset(ref);
       for (int v = r.first; v < r.first + r.count; ++v) {
         const float* q = &b.geometry.surface[static_cast<std::size_t>(v * BodyGeometry::kSurfaceFloats)];
         box.extend(Eigen::Vector3d(q[0], q[1], q[2]) + offset);
@@ -306,7 +318,7 @@ FragmentRef Viewport::pick(int x, int y) const {
     for (const BodyGeometry::Range& r : b.geometry.ranges) {
       const FragmentRef ref = ref_of(body, b, r);
       if (!drawn(ref)) continue;
-      const Eigen::Vector3d offset = r.fragment < 0 ? Eigen::Vector3d::Zero() : m_document->drawn_offset(ref);
+      const Eigen::Vector3d offset = drawn_offset(ref);
       const double t = ray_hit(b.geometry, r, offset, origin, direction);
       if (t > 0.0 && (nearest < 0.0 || t < nearest)) {
         nearest = t;

@@ -71,6 +71,8 @@ class Viewport : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   Eigen::AlignedBox3d scene_bounds(bool selection_only) const;
   FragmentRef ref_of(int body, const BodyBuffers& b, const BodyGeometry::Range& r) const;
   bool drawn(const FragmentRef& r) const;
+  /// Where fragment r is drawn from its place, in scene units.
+  Eigen::Vector3d drawn_offset(const FragmentRef& r) const;
 
   StudioDocument* m_document;
   Selection* m_selection;

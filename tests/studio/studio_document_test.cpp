@@ -9,6 +9,7 @@
 #include "fissure/io/scene_export.hpp"
 #include "fissure/io/scene_import.hpp"
 #include "fissure/mesh/surface_mesh.hpp"
+#include "fissure/scene/fragment_export.hpp"
 #include "fissure/scene/scene_body_check.hpp"
 
 #include <QCoreApplication>
@@ -54,6 +55,10 @@ TEST(StudioDocument, AFailedOpenChangesNothing) {
   const std::size_t bodies = d.bodies().size();
   const fs::path dir = test::fresh_temp_dir("studio-bad-open");
   std::ofstream(dir / "broken.glb") << "glTF but not really";
+  // A project whose scene is there but whose support does not parse.
+  fs::copy_file(kStreet, dir / "street.glb");
+  std::ofstream(dir / "project.json") << R"({"fissure_project": 1, "scene": "street.glb", "seed": 1, "assign": {},
+    "bodies": {"/street/curb": {"supports": ["box:1,2,3"]}}})";
   for (const fs::path& bad : {dir / "missing.glb", dir / "broken.glb", dir / "project.json"}) {
     EXPECT_THROW(d.open(QString::fromStdString(bad.string())), Error) << bad;
     EXPECT_EQ(d.bodies().size(), bodies);
@@ -202,18 +207,24 @@ TEST(StudioDocument, FragmentEditsAndExport) {
     const bool found = std::any_of(back.nodes.begin(), back.nodes.end(), [&](const SceneNode& m) { return m.path == node.path; });
     EXPECT_TRUE(found) << node.path;
   }
-  // The moved fragment: its world bounds are 0.5 m higher than the fragment's own.
-  double lowest = 1e9;
-  for (const SceneBody& body : scene_bodies(back)) {
-    if (body.path.rfind("/street/sidewalk/slab_03/", 0) != 0) continue;
-    for (int m : body.meshes) {
-      const SceneMesh& mesh = back.meshes[static_cast<std::size_t>(m)];
-      for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
-        lowest = std::min(lowest, (body.world * mesh.vertices.row(v).transpose().homogeneous())(1));
+  // The moved fragment (still the first, fragment_000: the deleted one was the second) lies 0.5 m
+  // above where it broke; the next one exported (the slab's third) where it broke. Float32 files: 1e-5 m.
+  auto lowest_of = [&](const std::string& path) {
+    double lowest = 1e9;
+    for (const SceneBody& body : scene_bodies(back)) {
+      if (body.path != path) continue;
+      for (int m : body.meshes) {
+        const SceneMesh& mesh = back.meshes[static_cast<std::size_t>(m)];
+        for (Eigen::Index v = 0; v < mesh.vertices.rows(); ++v)
+          lowest = std::min(lowest, (body.world * mesh.vertices.row(v).transpose().homogeneous())(1));
+      }
     }
-  }
-  const double slab_bottom = (*fragments)[0].vertices.col(1).minCoeff();
-  EXPECT_LT(lowest, slab_bottom + 1e-5) << "the unmoved fragments still rest where the slab was";
+    return lowest;
+  };
+  const std::string first = "/street/sidewalk/slab_03/" + fragment_name(0, n - 1);
+  const std::string second = "/street/sidewalk/slab_03/" + fragment_name(1, n - 1);
+  EXPECT_NEAR(lowest_of(first), (*fragments)[0].vertices.col(1).minCoeff() + 0.5, 1e-5);
+  EXPECT_NEAR(lowest_of(second), (*fragments)[2].vertices.col(1).minCoeff(), 1e-5);
 
   // Only the selected fragments: their own file, n parts at most, no street.
   const std::set<FragmentRef> chosen{{slab, cracks, 0}, {slab, cracks, 2}};

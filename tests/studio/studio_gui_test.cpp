@@ -94,6 +94,14 @@ TEST(StudioGui, ANewUsersSession) {
   EXPECT_TRUE(errors[0].contains("/nonexistent/street.glb")) << errors[0].toStdString();
   EXPECT_FALSE(w.document()->is_open());
 
+  // Nothing open: export and save say so instead of writing an empty scene.
+  EXPECT_FALSE(w.export_to(QString::fromStdString((test::fresh_temp_dir("studio-gui-empty") / "x.glb").string()), false));
+  EXPECT_FALSE(w.save_project_to(QString::fromStdString((test::fresh_temp_dir("studio-gui-empty") / "p.json").string())));
+  ASSERT_EQ(errors.size(), 3);
+  EXPECT_TRUE(errors.back().contains("open a scene first")) << errors.back().toStdString();
+  errors.clear();
+  errors << "(the missing scene)";
+
   const fs::path street = test::source_dir() / "assets/scenes/street.glb";
   ASSERT_TRUE(w.open_file(QString::fromStdString(street.string())));
   QApplication::processEvents();
@@ -129,9 +137,16 @@ TEST(StudioGui, ANewUsersSession) {
   // F fractures the selection in the background; the UI keeps running meanwhile.
   QTest::keyClick(&w, Qt::Key_F);
   ASSERT_TRUE(w.jobs()->fracture_running());
+  QElapsedTimer fracture_time;
+  fracture_time.start();
   const qint64 stall = run_until([&] { return !w.jobs()->fracture_running(); });
+  const qint64 took = fracture_time.elapsed();
   ASSERT_TRUE(w.document()->fracture_of(slab)) << errors.join("\n").toStdString();
-  std::cout << "longest UI stall while a slab fractured: " << stall << " ms\n";
+  std::cout << "longest UI stall while a slab fractured: " << stall << " ms of " << took << " ms\n";
+  // A freeze detector, not the benchmark (its target is 50 ms: docs/BENCHMARKS.md): a UI that
+  // waited on the fracture would stall for all of it. Relative, so a loaded CI machine, slow
+  // for both, does not fail it.
+  EXPECT_LT(stall, took / 2) << "the UI waited on the fracture";
   const auto fragments = w.document()->shown_fragments(slab);
   ASSERT_GE(fragments->size(), 2u);
   w.viewport()->frame_selection();
@@ -185,6 +200,29 @@ TEST(StudioGui, ANewUsersSession) {
   }
   EXPECT_EQ(pieces, static_cast<int>(fragments->size()));
   EXPECT_EQ(errors.size(), 2) << errors.join("\n").toStdString();
+
+  // Undo the move and the fracture with a fragment selected: the selection lets go of it, so
+  // Delete has nothing to delete and the fracture can still be redone.
+  ASSERT_TRUE(w.selection()->contains(piece));
+  QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
+  QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier);
+  EXPECT_FALSE(w.document()->fracture_of(slab));
+  EXPECT_FALSE(w.selection()->contains(piece));
+  QTest::keyClick(&w, Qt::Key_Delete);
+  EXPECT_EQ(errors.size(), 3);
+  EXPECT_TRUE(w.document()->undo_stack()->canRedo());
+  QTest::keyClick(&w, Qt::Key_Z, Qt::ControlModifier | Qt::ShiftModifier);
+  EXPECT_EQ(w.document()->fracture_of(slab), state);
+
+  // The bathroom (30 bodies), then the street (26) over a selection of the bathroom's last body:
+  // the new scene opens with nothing selected.
+  ASSERT_TRUE(w.open_file(QString::fromStdString((test::source_dir() / "assets/scenes/bathroom.glb").string())));
+  save_screenshot(w, "05-bathroom-opened.png");
+  const int last = static_cast<int>(w.document()->bodies().size()) - 1;
+  ASSERT_GT(last, 26);
+  w.selection()->set({{last, 0, -1}});
+  ASSERT_TRUE(w.open_file(QString::fromStdString(street.string())));
+  EXPECT_TRUE(w.selection()->empty());
 }
 
 }  // namespace
