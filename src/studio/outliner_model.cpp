@@ -9,9 +9,12 @@ OutlinerModel::OutlinerModel(StudioDocument* document, QObject* parent) : QStand
   connect(document, &StudioDocument::scene_reset, this, &OutlinerModel::rebuild);
   connect(document, &StudioDocument::body_changed, this, &OutlinerModel::update_body);
   connect(document, &StudioDocument::edits_changed, this, &OutlinerModel::update_body);  // "(hidden)", deleted rows
+  // Only bodies whose shown crack count moved: most slider ticks change none.
   connect(document, &StudioDocument::age_changed, this, [this] {
-    for (int b = 0; b < static_cast<int>(m_document->bodies().size()); ++b)
-      if (m_document->fracture_of(b)) update_body(b);
+    for (int b = 0; b < static_cast<int>(m_document->bodies().size()); ++b) {
+      int cracks = 0;
+      if (m_document->shown_fragments(b, &cracks) && cracks != m_listed_cracks[b]) update_body(b);
+    }
   });
   connect(document, &StudioDocument::assignments_changed, this, &OutlinerModel::update_assignments);
   rebuild();
@@ -30,6 +33,7 @@ void OutlinerModel::rebuild() {
 void OutlinerModel::rebuild_rows() {
   removeRows(0, rowCount());
   m_node_items.clear();
+  m_listed_cracks.clear();
   if (!m_document->is_open()) return;
   const ImportedScene& scene = m_document->scene();
   m_node_items.assign(scene.nodes.size(), nullptr);
@@ -77,6 +81,7 @@ void OutlinerModel::update_body_rows(int body) {
     if (item->child(r)->data(FragmentRole).toInt() >= 0) item->removeRow(r);
   int cracks = 0;
   const auto fragments = m_document->shown_fragments(body, &cracks);
+  m_listed_cracks[body] = fragments ? cracks : -1;
   if (!fragments) return;
   const int count = static_cast<int>(fragments->size());
   for (int f = 0; f < count; ++f) {

@@ -6,6 +6,7 @@
 
 #include <QStandardItemModel>
 
+#include <map>
 #include <vector>
 
 namespace fissure::studio {
@@ -32,6 +33,7 @@ class OutlinerModel : public QStandardItemModel {
   void update_assignments();
   StudioDocument* m_document;
   std::vector<QStandardItem*> m_node_items;
+  std::map<int, int> m_listed_cracks;  ///< by body: the crack count its fragment rows are of
 };
 
 }  // namespace fissure::studio

@@ -10,6 +10,20 @@
 
 namespace fissure::studio {
 namespace fs = std::filesystem;
+namespace {
+
+// The centre of volume of fragments: their centres weighted by their volumes.
+Eigen::Vector3d centre_of_volume(const std::vector<FragmentMesh>& fragments) {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double volume = 0.0;
+  for (const FragmentMesh& m : fragments) {
+    centre += m.volume * m.centre;
+    volume += m.volume;
+  }
+  return volume > 0.0 ? Eigen::Vector3d(centre / volume) : centre;
+}
+
+}  // namespace
 
 StudioDocument::StudioDocument(QObject* parent) : QObject(parent) {}
 
@@ -127,6 +141,7 @@ std::map<int, std::shared_ptr<BodyFractureState>> StudioDocument::fracture_state
     auto fragments = std::make_shared<const std::vector<FragmentMesh>>(std::move(state->fractured.fracture.fragments));
     state->fractured.fracture.fragments.clear();
     state->edits[cracks].resize(fragments->size());
+    state->centre_at[cracks] = centre_of_volume(*fragments);
     state->fragments_at[cracks] = std::move(fragments);
     out[static_cast<int>(b)] = std::move(state);
   }
@@ -189,6 +204,7 @@ void StudioDocument::add_fragments(int body, const BodyFractureState* of, int cr
   if (!state || state != of) return;  // the body was fractured again or undone meanwhile
   if (state->fragments_at.count(cracks)) return;
   state->edits[cracks].resize(fragments->size());
+  state->centre_at[cracks] = centre_of_volume(*fragments);
   state->fragments_at[cracks] = std::move(fragments);
   emit body_changed(body);
 }
@@ -232,16 +248,9 @@ Eigen::Vector3d StudioDocument::drawn_offset(const FragmentRef& f) const {
   if (!state) return offset;
   const auto it = state->fragments_at.find(f.cracks);
   if (it == state->fragments_at.end() || f.fragment < 0 || f.fragment >= static_cast<int>(it->second->size())) return offset;
-  // The body's centre of volume: the fragments' centres weighted by their volumes.
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  double volume = 0.0;
-  for (const FragmentMesh& m : *it->second) {
-    centre += m.volume * m.centre;
-    volume += m.volume;
-  }
-  if (!(volume > 0.0)) return offset;
-  centre /= volume;
-  return offset + m_explode * ((*it->second)[static_cast<std::size_t>(f.fragment)].centre - centre);
+  const auto centre = state->centre_at.find(f.cracks);
+  if (centre == state->centre_at.end()) return offset;
+  return offset + m_explode * ((*it->second)[static_cast<std::size_t>(f.fragment)].centre - centre->second);
 }
 
 namespace {

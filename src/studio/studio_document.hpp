@@ -38,6 +38,9 @@ struct BodyFractureState {
   /// at once, the others by the age job when the slider first reaches them.
   std::map<int, std::shared_ptr<const std::vector<FragmentMesh>>> fragments_at;
   std::map<int, std::vector<FragmentEdit>> edits;  ///< by crack count, one per fragment
+  /// By crack count, the fragments' centre of volume (the exploded view pushes from it), set
+  /// with fragments_at so a frame does not sum every fragment for each one it draws.
+  std::map<int, Eigen::Vector3d> centre_at;
   std::set<int> failed_counts;  ///< crack counts whose fragments could not be meshed (not retried)
   int crack_count() const { return static_cast<int>(fractured.fracture.result.cracks.size()); }
 };
